@@ -1,0 +1,42 @@
+"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]``."""
+from __future__ import annotations
+
+import argparse
+
+from powergraph.cli.common import efficiency_arg, load, print_json
+
+METHODS = ("virtual-power", "wang2021")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("solve", help="solve speeds, torques, power flow and efficiency",
+                            description="Solve a gear-train model and report speeds, "
+                                        "torques, per-mesh virtual power and loss, "
+                                        "and the efficiency.")
+    parser.add_argument("model", help="model file (YAML)")
+    parser.add_argument("--json", action="store_true", help="print the SPEC §3 JSON object")
+    parser.add_argument("--method", choices=METHODS, default="virtual-power",
+                        help="virtual-power (default, any train) or wang2021 (the seed "
+                             "paper's split/virtual power method, RV-type trains)")
+    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+                        help="override every mesh's basic efficiency")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    model = load(args.model, args.mesh_efficiency)
+    if args.method == "wang2021":
+        from powergraph.methods.wang2021 import solve_wang2021
+
+        result = solve_wang2021(model)
+    else:
+        from powergraph.statics import solve
+
+        result = solve(model)
+    if args.json:
+        print_json(result.to_dict())
+    else:
+        from powergraph.statics.report import text_report
+
+        print(result.text_report() if hasattr(result, "text_report") else text_report(result))
+    return 0

@@ -1,0 +1,81 @@
+"""Helpers shared by the command modules: loading with overrides, JSON and file output."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+from pathlib import Path
+from typing import Any, Callable
+
+from powergraph.errors import UsageError
+
+
+def print_json(data: Any) -> None:
+    """Print one JSON object on stdout (NaN/inf become null: JSON has no such numbers)."""
+    json.dump(_finite(data), sys.stdout, indent=2, allow_nan=False)
+    sys.stdout.write("\n")
+
+
+def _finite(data: Any) -> Any:
+    if isinstance(data, float):
+        return data if math.isfinite(data) else None
+    if isinstance(data, dict):
+        return {str(k): _finite(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_finite(v) for v in data]
+    return data
+
+
+def efficiency_arg(text: str) -> float:
+    """argparse type for a basic mesh efficiency in (0, 1]."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (0.0 < value <= 1.0):
+        raise argparse.ArgumentTypeError(f"must be in (0, 1], got {text}")
+    return value
+
+
+def load(path: str, mesh_efficiency: float | None = None):
+    """Load a model file, applying ``--mesh-efficiency`` if given."""
+    from powergraph.model import load_model
+
+    model = load_model(path)
+    return model.with_mesh_efficiency(mesh_efficiency) if mesh_efficiency is not None else model
+
+
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def check_figure_path(path: str, option: str = "-o") -> Path:
+    """A figure path must end in .png, .svg or .pdf and its folder must exist."""
+    target = Path(path)
+    if target.suffix.lower() not in FIGURE_SUFFIXES:
+        raise UsageError(f"{option} {path}: the suffix must be one of "
+                         f"{', '.join(FIGURE_SUFFIXES)}")
+    if not target.parent.exists():
+        raise UsageError(f"{option} {path}: folder {str(target.parent)!r} does not exist")
+    return target
+
+
+def write_atomically(path: str | Path, write: Callable[[str], None]) -> None:
+    """Call ``write(tmp_path)`` then rename onto ``path``: never a half-written file.
+
+    The temporary file has the same suffix, so writers that pick a format by suffix
+    (matplotlib's ``savefig``) still work.
+    """
+    target = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix,
+                               dir=target.parent or ".")
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -1,0 +1,14 @@
+"""Kinematics layer: bodies' speeds from Willis' relations (DESIGN §2)."""
+from __future__ import annotations
+
+from powergraph.kinematics.elements import Element, elements_of, willis_ratio
+from powergraph.kinematics.variants import backdriven
+from powergraph.kinematics.speeds import (
+    Kinematics,
+    constraint_matrix,
+    degrees_of_freedom,
+    solve_speeds,
+)
+
+__all__ = ["Element", "Kinematics", "backdriven", "constraint_matrix", "degrees_of_freedom",
+           "elements_of", "solve_speeds", "willis_ratio"]

@@ -1,0 +1,76 @@
+"""The train's kinematic elements: meshes (Willis rows) and couplings (equal speeds).
+
+A coupling is treated as a pair of ratio +1 whose carrier is the frame: its row
+``w_a - w_b = 0`` is then Willis' row, and an optional coupling efficiency acts like a
+mesh's (the loss torque reacts on the frame).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from powergraph.model.spec import Link, Model
+
+
+@dataclass(frozen=True)
+class Element:
+    """One mesh or coupling, resolved to bodies.
+
+    ``ratio`` is Willis' quotient ``(w_a - w_c)/(w_b - w_c)``; ``a``, ``b``, ``carrier``
+    are component ids and ``body_a``, ``body_b``, ``body_c`` their bodies.
+    """
+
+    link: int
+    kind: str
+    a: str
+    b: str
+    carrier: str
+    body_a: str
+    body_b: str
+    body_c: str
+    ratio: float
+    efficiency: float
+
+    @property
+    def bodies(self) -> tuple[str, str, str]:
+        return self.body_a, self.body_b, self.body_c
+
+
+def willis_ratio(link: Link, model: Model) -> float:
+    """Willis' quotient ``(w_a - w_c)/(w_b - w_c)`` of a mesh (SPEC §1).
+
+    ``-z_b/z_a`` for an external pair, ``+z_b/z_a`` when either gear is internal, or the
+    link's ``ratio`` when given.
+
+    Examples
+    --------
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "p", "components": {0: {"role": "frame"},
+    ...     1: {"teeth": 20}, 2: {"teeth": 50}},
+    ...     "links": [{"type": "mesh", "between": [1, 2]}],
+    ...     "ports": [{"component": 1, "role": "input"}, {"component": 2, "role": "output"}]})
+    >>> willis_ratio(m.links[0], m)
+    -2.5
+    """
+    if link.ratio is not None:
+        return link.ratio
+    a, b = (model.components[x] for x in link.between)
+    sign = 1.0 if (a.internal or b.internal) else -1.0
+    return sign * b.teeth / a.teeth
+
+
+def elements_of(model: Model) -> tuple[Element, ...]:
+    """Meshes and couplings of ``model`` in file order."""
+    out = []
+    for link in model.links:
+        if link.type == "mesh":
+            carrier, ratio = link.carrier, willis_ratio(link, model)
+        elif link.type == "coupling":
+            carrier, ratio = model.frame, 1.0
+        else:
+            continue
+        a, b = link.between
+        out.append(Element(link=link.index, kind=link.type, a=a, b=b, carrier=carrier,
+                           body_a=model.body_of[a], body_b=model.body_of[b],
+                           body_c=model.body_of[carrier], ratio=ratio,
+                           efficiency=link.efficiency))
+    return tuple(out)

@@ -1,0 +1,206 @@
+"""Speeds of every body from the given input speeds (DESIGN §2).
+
+One linear row per mesh ``(w_a - w_c) - i (w_b - w_c) = s`` (``s`` = 0, or a slip used by
+sensitivity analyses), one per coupling ``w_a - w_b = 0``, and ``w_frame = 0``.
+DOF = bodies - rank. A rank defect or an inconsistency is a KinematicsError that says
+what is wrong, never a NaN.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Mapping
+
+import numpy as np
+
+from powergraph.errors import KinematicsError
+from powergraph.kinematics.elements import Element, elements_of
+from powergraph.model.spec import Model
+
+_RTOL = 1e-10
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """Speeds of a train. ``body_speeds`` in rad/s keyed by body id ("2/3").
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> kin = solve_speeds(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+    >>> round(kin.speed("4"), 5)                                # doctest: +SKIP
+    1.29818
+    """
+
+    body_speeds: Mapping[str, float]
+    body_of: Mapping[str, str] = field(repr=False)
+    dof: int
+    given: Mapping[str, float]
+    input_component: str | None = None
+    output_component: str | None = None
+
+    def speed(self, component: str) -> float:
+        """Absolute speed (rad/s) of a component (id as a string)."""
+        return self.body_speeds[self.body_of[str(component)]]
+
+    def relative(self, component: str, frame: str) -> float:
+        """Speed of ``component`` seen from the body of component ``frame``."""
+        return self.speed(component) - self.speed(frame)
+
+    @property
+    def ratio(self) -> float | None:
+        """Input speed / output speed for a one-input, one-output train (else None)."""
+        if self.input_component is None or self.output_component is None:
+            return None
+        out = self.speed(self.output_component)
+        return self.speed(self.input_component) / out if out != 0 else float("inf")
+
+    def to_dict(self) -> dict:
+        return {"dof": self.dof, "ratio": self.ratio,
+                "speeds": {c: self.body_speeds[b] for c, b in self.body_of.items()}}
+
+
+def constraint_matrix(model: Model, elements: tuple[Element, ...] | None = None) -> np.ndarray:
+    """Rows: one per element (Willis/coupling), then ``w_frame = 0``; columns: bodies."""
+    elements = elements_of(model) if elements is None else elements
+    column = {body.id: j for j, body in enumerate(model.bodies)}
+    rows = np.zeros((len(elements) + 1, len(model.bodies)))
+    for r, el in enumerate(elements):
+        rows[r, column[el.body_a]] += 1.0
+        rows[r, column[el.body_b]] -= el.ratio
+        rows[r, column[el.body_c]] += el.ratio - 1.0
+    rows[-1, column[model.frame_body]] = 1.0
+    return rows
+
+
+def degrees_of_freedom(model: Model) -> int:
+    """Number of independent speeds the train needs (bodies - rank of the constraints)."""
+    rows = constraint_matrix(model)
+    return len(model.bodies) - _rank(rows)
+
+
+def _rank(matrix: np.ndarray) -> int:
+    if matrix.size == 0:
+        return 0
+    s = np.linalg.svd(matrix, compute_uv=False)
+    return int(np.sum(s > _RTOL * max(1.0, s[0])))
+
+
+def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
+                 slips: Mapping[int, float] | None = None) -> Kinematics:
+    """Solve every body's speed.
+
+    Parameters
+    ----------
+    model : Model
+    speeds : mapping, optional
+        ``{component id: rad/s}``; defaults to the ports' ``speed`` values, or the first
+        input at 1 rad/s when no port gives one and the train has one DOF.
+    slips : mapping, optional
+        ``{link index: s}`` added to that mesh's Willis row (used for backlash and
+        fluctuation sensitivities; 0 in a normal solve).
+
+    Returns
+    -------
+    Kinematics
+
+    Raises
+    ------
+    KinematicsError
+        Wrong number of speeds, speeds that do not fix the motion or contradict each other,
+        or a train that cannot move.
+
+    Examples
+    --------
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "pair", "components": {0: {"role": "frame"},
+    ...     1: {"teeth": 20}, 2: {"teeth": 50}},
+    ...     "links": [{"type": "mesh", "between": [1, 2]}],
+    ...     "ports": [{"component": 1, "role": "input", "speed": 10},
+    ...               {"component": 2, "role": "output"}]})
+    >>> kin = solve_speeds(m)
+    >>> kin.speed("2"), kin.ratio
+    (-4.0, -2.5)
+    """
+    elements = elements_of(model)
+    rows = constraint_matrix(model, elements)
+    n_bodies = len(model.bodies)
+    dof = n_bodies - _rank(rows)
+    if dof == 0:
+        raise KinematicsError("the train cannot move (0 degrees of freedom): its meshes and "
+                              "couplings lock every body")
+    given = _given_speeds(model, speeds, dof)
+    rhs = np.zeros(len(rows))
+    row_of = {el.link: r for r, el in enumerate(elements)}
+    for index, value in (slips or {}).items():
+        if index not in row_of:
+            raise KinematicsError(f"links[{index}] is not a mesh or coupling: it has no slip")
+        rhs[row_of[index]] = value
+    solution = _solve_reduced(model, rows[:-1], rhs[:-1], given)
+    inputs, outputs = model.inputs, model.outputs
+    return Kinematics(
+        body_speeds=MappingProxyType({b.id: float(solution[j]) for j, b in enumerate(model.bodies)}),
+        body_of=model.body_of, dof=dof, given=MappingProxyType(dict(given)),
+        input_component=inputs[0].component if len(inputs) == 1 else None,
+        output_component=outputs[0].component if len(outputs) == 1 else None)
+
+
+def _solve_reduced(model: Model, rows: np.ndarray, rhs: np.ndarray,
+                   given: Mapping[str, float]) -> np.ndarray:
+    """Substitute the frame and the given speeds, then solve for the other bodies."""
+    column = {body.id: j for j, body in enumerate(model.bodies)}
+    known: dict[int, float] = {column[model.frame_body]: 0.0}
+    for component, value in given.items():
+        j = column[model.body_of[component]]
+        if j in known and abs(known[j] - value) > 1e-12 * max(1.0, abs(value)):
+            what = "is fixed to the frame" if j == column[model.frame_body] else \
+                "is on a body whose speed is already given"
+            raise KinematicsError(f"a speed is given for {component!r}, which {what}")
+        known[j] = value
+    unknown = [j for j in range(len(model.bodies)) if j not in known]
+    solution = np.zeros(len(model.bodies))
+    for j, value in known.items():
+        solution[j] = value
+    reduced_rhs = rhs - rows[:, list(known)] @ np.array(list(known.values()))
+    reduced = rows[:, unknown]
+    if unknown:
+        solution[unknown] = np.linalg.lstsq(reduced, reduced_rhs, rcond=None)[0]
+    residual = rows @ solution - rhs
+    scale = max(1.0, float(np.max(np.abs(solution))))
+    if residual.size and np.max(np.abs(residual)) > 1e-9 * scale:
+        raise KinematicsError("the given speeds contradict each other: "
+                              + ", ".join(f"{c} = {v:g} rad/s" for c, v in given.items())
+                              + " cannot all hold")
+    if unknown and _rank(reduced) < len(unknown):
+        raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
+    if unknown and reduced.shape[0] == reduced.shape[1]:
+        solution[unknown] = np.linalg.solve(reduced, reduced_rhs)  # exact where square
+    return solution
+
+
+def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) -> dict:
+    if speeds is not None:
+        given = {str(k): float(v) for k, v in speeds.items()}
+        for component in given:
+            if component not in model.components:
+                raise KinematicsError(f"speed given for unknown component {component!r}")
+    else:
+        given = {p.component: p.speed for p in model.ports if p.speed is not None}
+        if not given and dof == 1:
+            given = {model.inputs[0].component: 1.0}
+    if len(given) != dof:
+        plural = "s" if dof != 1 else ""
+        raise KinematicsError(
+            f"train has {dof} degree{plural} of freedom but {len(given)} speed"
+            f"{'s were' if len(given) != 1 else ' was'} given"
+            + ("" if len(given) > dof else " (give a speed on more ports)"))
+    return given
+
+
+def _underdetermined_message(model: Model, reduced: np.ndarray, unknown: list[int],
+                             given: Mapping) -> str:
+    _, s, vt = np.linalg.svd(reduced)
+    null = vt[int(np.sum(s > _RTOL * max(1.0, s[0]))):]
+    free = [model.bodies[j].id for k, j in enumerate(unknown) if np.any(np.abs(null[:, k]) > 1e-9)]
+    return ("the given speeds (" + ", ".join(given) + ") do not fix the motion; "
+            "bodies still free to turn: " + ", ".join(free))

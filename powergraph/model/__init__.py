@@ -1,0 +1,43 @@
+"""Model layer: YAML reading, validation, the immutable model and its graph (SPEC §1)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from powergraph.model.graph import to_networkx
+from powergraph.model.spec import Body, Component, Link, Model, Port
+from powergraph.model.validate import model_from_dict
+from powergraph.model.yaml_loader import load_yaml_file, load_yaml_text
+
+__all__ = ["Body", "Component", "Link", "Model", "Port", "load_model", "loads_model",
+           "model_from_dict", "to_networkx"]
+
+
+def load_model(path: str | Path) -> Model:
+    """Read and validate a model file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A YAML model file (SPEC §1).
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    ModelError
+        With the place in the file and the problem.
+
+    Examples
+    --------
+    >>> model = load_model("models/rv40e.yaml")      # doctest: +SKIP
+    >>> model.name                                   # doctest: +SKIP
+    'RV-40E'
+    """
+    return model_from_dict(load_yaml_file(path), source=str(path))
+
+
+def loads_model(text: str, source: str = "<model>") -> Model:
+    """Validate a model given as YAML text (see :func:`load_model`)."""
+    return model_from_dict(load_yaml_text(text, source), source=source)

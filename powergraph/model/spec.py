@@ -1,0 +1,160 @@
+"""The validated, immutable gear-train model (SPEC §1).
+
+A :class:`Model` is built by :func:`powergraph.model.model_from_dict` or
+:func:`powergraph.model.load_model`; every solver takes it and never changes it.
+Component ids are compared as strings: ``Component.id`` is the string form and
+``Component.raw_id`` the value as written in the file (an int stays an int in JSON lists).
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any, Mapping
+
+LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
+
+
+@dataclass(frozen=True)
+class Component:
+    """One numbered part of the train (a gear, shaft, carrier, the housing...)."""
+
+    id: str
+    raw_id: int | str
+    name: str | None = None
+    role: str | None = None
+    kind: str | None = None
+    teeth: int | None = None
+    internal: bool = False
+    count: int = 1
+    geometry: Any = None
+    note: str | None = None
+
+    @property
+    def is_frame(self) -> bool:
+        return self.role == "frame"
+
+    @property
+    def label(self) -> str:
+        """Short label for reports: the id, with the name if there is one."""
+        return f"{self.raw_id} ({self.name})" if self.name else str(self.raw_id)
+
+
+@dataclass(frozen=True)
+class Link:
+    """One edge of the graph: a mesh, a fixed joint, a coupling or a bearing.
+
+    For a mesh, ``carrier`` is the member on which both gear axes are fixed and
+    ``efficiency`` the basic (carrier-held) efficiency. ``ratio`` is Willis' quotient
+    ``(w_a - w_c)/(w_b - w_c)`` when given; otherwise it follows from the teeth.
+    ``blocks`` holds the optional analysis blocks (``backlash``, ``cycloid``, ...), already
+    validated by their own schemas.
+    """
+
+    index: int
+    type: str
+    between: tuple[str, str]
+    raw_between: tuple[int | str, int | str]
+    carrier: str | None = None
+    efficiency: float = 1.0
+    ratio: float | None = None
+    name: str | None = None
+    blocks: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
+
+    @property
+    def path(self) -> str:
+        return f"links[{self.index}]"
+
+
+@dataclass(frozen=True)
+class Port:
+    """Where power enters (``input``) or leaves (``output``) the train."""
+
+    index: int
+    component: str
+    role: str
+    speed: float | None = None
+    power: float | None = None
+    torque: float | None = None
+    name: str | None = None
+
+    @property
+    def path(self) -> str:
+        return f"ports[{self.index}]"
+
+
+@dataclass(frozen=True)
+class Body:
+    """Components joined by ``fixed`` links: one rigid body with one speed."""
+
+    id: str
+    members: tuple[str, ...]
+    is_frame: bool = False
+
+
+@dataclass(frozen=True)
+class Model:
+    """A validated gear train. Immutable: solvers return new objects, never edit it."""
+
+    name: str
+    components: Mapping[str, Component]
+    links: tuple[Link, ...]
+    ports: tuple[Port, ...]
+    bodies: tuple[Body, ...]
+    body_of: Mapping[str, str]
+    description: str | None = None
+    source: str | None = None
+
+    @property
+    def frame(self) -> str:
+        """Id of the frame component."""
+        return next(c.id for c in self.components.values() if c.is_frame)
+
+    @property
+    def frame_body(self) -> str:
+        return self.body_of[self.frame]
+
+    @property
+    def meshes(self) -> tuple[Link, ...]:
+        return tuple(link for link in self.links if link.type == "mesh")
+
+    @property
+    def inputs(self) -> tuple[Port, ...]:
+        return tuple(p for p in self.ports if p.role == "input")
+
+    @property
+    def outputs(self) -> tuple[Port, ...]:
+        return tuple(p for p in self.ports if p.role == "output")
+
+    def body(self, body_id: str) -> Body:
+        return next(b for b in self.bodies if b.id == body_id)
+
+    def raw_id(self, component: str) -> int | str:
+        return self.components[component].raw_id
+
+    def with_mesh_efficiency(self, efficiency: float) -> "Model":
+        """A copy in which every mesh has basic efficiency ``efficiency``.
+
+        Examples
+        --------
+        >>> from powergraph.model import load_model
+        >>> m = load_model("models/rv40e.yaml").with_mesh_efficiency(0.99)  # doctest: +SKIP
+        """
+        from powergraph.model.validate import check_efficiency
+
+        efficiency = check_efficiency(efficiency, "--mesh-efficiency")
+        links = tuple(dataclasses.replace(link, efficiency=efficiency)
+                      if link.type == "mesh" else link for link in self.links)
+        return dataclasses.replace(self, links=links)
+
+    def with_link(self, index: int, **changes: Any) -> "Model":
+        """A copy with ``links[index]`` changed (e.g. ``efficiency=0.998``)."""
+        links = list(self.links)
+        links[index] = dataclasses.replace(links[index], **changes)
+        return dataclasses.replace(self, links=tuple(links))
+
+    def with_port(self, index: int, **changes: Any) -> "Model":
+        """A copy with ``ports[index]`` changed (e.g. ``role="output"``)."""
+        ports = list(self.ports)
+        ports[index] = dataclasses.replace(ports[index], **changes)
+        return dataclasses.replace(self, ports=tuple(ports))

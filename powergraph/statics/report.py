@@ -1,0 +1,84 @@
+"""The JSON object of SPEC §3 and the readable text report of ``powergraph solve``."""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from powergraph.statics.result import PowerFlowResult
+
+RPM = 60.0 / (2.0 * math.pi)
+
+
+def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
+    """SPEC §3 keys, plus ``passes`` and ``load_sharing_assumed``.
+
+    Component ids in lists (``between``, ``carrier``, ``driver``) are written as in the
+    model file; dictionary keys are their string forms.
+    """
+    model = result.model
+    raw = model.raw_id
+    meshes = [{"link": e.link, "between": [raw(e.a), raw(e.b)], "carrier": raw(e.carrier),
+               "driver": raw(e.driver) if e.driver is not None else None,
+               "virtual_power": e.virtual_power, "loss": e.loss, "efficiency": e.efficiency,
+               "willis_ratio": e.ratio}
+              for e in result.meshes]
+    return {
+        "name": model.name,
+        "method": result.method,
+        "dof": result.dof,
+        "ratio": result.ratio,
+        "efficiency": result.efficiency,
+        "input_power": result.input_power,
+        "output_power": result.output_power,
+        "total_loss": result.total_loss,
+        "speeds": result.speeds,
+        "torques": result.torques,
+        "meshes": meshes,
+        "flows": [f.to_dict() for f in result.flows()],
+        "circulating_power": result.circulating_power,
+        "self_locking": result.self_locking,
+        "passes": result.passes,
+        "load_sharing_assumed": result.load_sharing_assumed,
+    }
+
+
+def _fmt_power(watts: float) -> str:
+    return f"{watts / 1000:,.4f} kW" if abs(watts) >= 1000 else f"{watts:,.4f} W"
+
+
+def text_report(result: PowerFlowResult) -> str:
+    """A readable report: speeds (rpm), external torques, per-mesh table, efficiency."""
+    model = result.model
+    lines = [f"{model.name} — virtual-power method ({result.dof} DOF)"]
+    if model.description:
+        lines.append(f"  {model.description.strip()}")
+    lines.append("")
+    if result.ratio is not None:
+        lines.append(f"ratio (input/output speed)  {result.ratio:.6g}")
+    lines += [f"input power                 {_fmt_power(result.input_power)}",
+              f"output power                {_fmt_power(result.output_power)}",
+              f"losses                      {_fmt_power(result.total_loss)}",
+              f"efficiency                  {result.efficiency * 100:.4f} %"]
+    if result.self_locking:
+        lines.append("SELF-LOCKING: the input cannot drive the output in this direction")
+    if result.circulating_power > 0:
+        lines.append(f"circulating power           {_fmt_power(result.circulating_power)}")
+    lines += ["", "speeds", f"  {'component':<24}{'rad/s':>14}{'rpm':>14}"]
+    for cid, w in result.speeds.items():
+        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM:>14.6g}")
+    lines += ["", "external torques (N·m, positive in the sense of positive speed)"]
+    for cid, t in result.torques.items():
+        lines.append(f"  {model.components[cid].label:<24}{t:>14.6g}")
+    lines += ["", "meshes (powers in each mesh's carrier frame)",
+              f"  {'link':<6}{'between':<10}{'carrier':<9}{'eta':>7}{'driver':>8}"
+              f"{'virtual power':>18}{'loss':>14}"]
+    raw = model.raw_id
+    for e in result.meshes:
+        driver = str(raw(e.driver)) if e.driver is not None else "-"
+        lines.append(f"  {e.link:<6}{f'{raw(e.a)}-{raw(e.b)}':<10}{str(raw(e.carrier)):<9}"
+                     f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.virtual_power):>18}"
+                     f"{_fmt_power(e.loss):>14}")
+    if result.load_sharing_assumed:
+        lines += ["", "note: load sharing between parallel paths is statically indeterminate; "
+                  "the minimum-norm (equal) sharing was assumed"]
+    return "\n".join(lines)

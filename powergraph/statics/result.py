@@ -1,0 +1,148 @@
+"""Results of a power-flow solve: frozen dataclasses indexed by the model's ids (SPEC §3)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from powergraph.kinematics import Kinematics
+from powergraph.model.spec import Model
+
+
+@dataclass(frozen=True)
+class ElementFlow:
+    """Torques, direction and loss of one mesh or coupling.
+
+    ``torques`` is the torque the element applies to each of its bodies (N·m);
+    ``driver`` the gear that feeds power into it in its carrier's frame (None when no
+    power passes); ``virtual_power`` that power (W, >= 0); ``loss`` what it dissipates.
+    """
+
+    link: int
+    kind: str
+    a: str
+    b: str
+    carrier: str
+    ratio: float
+    efficiency: float
+    force: float
+    factor: float
+    torques: Mapping[str, float]
+    driver: str | None
+    virtual_power: float
+    loss: float
+
+
+@dataclass(frozen=True)
+class PowerFlowResult:
+    """Everything a virtual-power solve finds (DESIGN §3).
+
+    Indexed by the model's component ids (strings); bodies are named like "2/3".
+
+    Examples
+    --------
+    >>> import powergraph as pg
+    >>> result = pg.solve(pg.load_model("models/rv40e.yaml"))   # doctest: +SKIP
+    >>> round(result.efficiency, 6)                              # doctest: +SKIP
+    0.287376
+    """
+
+    model: Model = field(repr=False, compare=False)
+    kinematics: Kinematics = field(repr=False)
+    elements: tuple[ElementFlow, ...]
+    external_torques: Mapping[str, float]   # by body
+    input_power: float
+    output_power: float
+    total_loss: float
+    passes: int
+    load_sharing_assumed: bool = False
+    method: str = "virtual-power"
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    @property
+    def dof(self) -> int:
+        return self.kinematics.dof
+
+    @property
+    def ratio(self) -> float | None:
+        """Input speed / output speed (one input and one output), else None."""
+        return self.kinematics.ratio
+
+    @property
+    def efficiency(self) -> float:
+        """Output power / input power."""
+        return self.output_power / self.input_power if self.input_power else float("nan")
+
+    @property
+    def self_locking(self) -> bool:
+        """True when the input cannot drive the output in the asked direction."""
+        return not self.efficiency > 0.0
+
+    @property
+    def speeds(self) -> dict[str, float]:
+        """Absolute speed of every component (rad/s)."""
+        return {c: self.kinematics.speed(c) for c in self.model.components}
+
+    @property
+    def torques(self) -> dict[str, float]:
+        """External torque on every port's component and on the frame (N·m)."""
+        out = {p.component: self.external_torques.get(self.model.body_of[p.component], 0.0)
+               for p in self.model.ports}
+        out[self.model.frame] = self.external_torques[self.model.frame_body]
+        return out
+
+    @property
+    def meshes(self) -> tuple[ElementFlow, ...]:
+        return tuple(e for e in self.elements if e.kind == "mesh")
+
+    def element(self, link: int) -> ElementFlow:
+        """The element of ``links[link]``."""
+        return next(e for e in self.elements if e.link == link)
+
+    def port_power(self, component: str, frame: str | None = None) -> float:
+        """Power fed in at a port's component (negative when it takes power out)."""
+        body = self.model.body_of[str(component)]
+        w = self.kinematics.body_speeds[body]
+        if frame is not None:
+            w -= self.kinematics.speed(frame)
+        return self.external_torques.get(body, 0.0) * w
+
+    # --- flow-graph views (computed by powergraph.statics.flow) ---------------------------
+    def flows(self, frame: str | None = None):
+        """Power-flow edges ``[Flow(source, target, power)]``, seen from ``frame``."""
+        from powergraph.statics.flow import flow_edges
+
+        return flow_edges(self, frame)
+
+    def flow_graph(self, frame: str | None = None):
+        """The power-flow graph as a networkx DiGraph (edge attribute ``power``)."""
+        from powergraph.statics.flow import flow_graph
+
+        return flow_graph(self, frame)
+
+    @property
+    def circulating_power(self) -> float:
+        """Largest, over directed cycles of the flow graph, of the smallest flow on it."""
+        from powergraph.statics.flow import circulating_power
+
+        return circulating_power(self.flows())
+
+    def split_powers(self, frame: str | None = None) -> dict[str, dict[str, float]]:
+        """Bodies that feed several elements, with the power into each."""
+        from powergraph.statics.flow import split_powers
+
+        return split_powers(self.flows(frame))
+
+    def plot(self, frame: str | None = None, ax: Any = None, **kwargs: Any):
+        """Draw the power-flow diagram (delegates to :mod:`powergraph.plot.power_flow`)."""
+        from powergraph.plot.power_flow import plot_power_flow
+
+        return plot_power_flow(self, frame=frame, ax=ax, **kwargs)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON object of SPEC §3."""
+        from powergraph.statics.report import result_to_dict
+
+        return result_to_dict(self)

@@ -1,0 +1,99 @@
+"""Conservation checks for any solved train — for the test-suite and for users.
+
+After a solve these must hold whatever the topology:
+
+- power in = power out + losses (``assert_power_balance``), in the ground frame and seen
+  from every body (losses are frame-invariant);
+- every node of the flow graph balances (``assert_flow_balance``);
+- every Willis row, coupling and the frame's zero speed (``assert_kinematics``);
+- every body is in torque equilibrium (``assert_equilibrium``);
+- every loss is >= 0 and no mesh gains power (``assert_losses_nonnegative``).
+
+Examples
+--------
+>>> import powergraph as pg
+>>> from powergraph.testing import assert_conservation
+>>> assert_conservation(pg.solve(pg.load_model("models/rv40e.yaml")))   # doctest: +SKIP
+"""
+from __future__ import annotations
+
+from powergraph.statics.flow import GENERATOR, GROUND, LOSS, MOTOR
+from powergraph.statics.result import PowerFlowResult
+
+RTOL = 1e-9
+
+
+def _close(a: float, b: float, scale: float, rtol: float, what: str) -> None:
+    if abs(a - b) > rtol * max(scale, 1e-300):
+        raise AssertionError(f"{what}: {a!r} != {b!r} (difference {a - b:.3e}, "
+                             f"allowed {rtol * scale:.3e})")
+
+
+def _scale(result: PowerFlowResult) -> float:
+    return max(abs(result.input_power), abs(result.output_power), result.total_loss, 1e-12)
+
+
+def assert_power_balance(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """Power in = power out + losses; each element's loss equals what flows into it."""
+    _close(result.input_power, result.output_power + result.total_loss, _scale(result),
+           rtol, "power in vs power out + losses")
+    for element in result.elements:
+        if element.loss < -rtol * _scale(result):
+            raise AssertionError(f"links[{element.link}] has a negative loss {element.loss}")
+
+
+def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
+                        rtol: float = RTOL) -> None:
+    """In the flow graph seen from ``frame``, every body and element node balances, and
+    motor + ground = generator + loss."""
+    graph = result.flow_graph(frame)
+    scale = _scale(result) + sum(abs(e.virtual_power) for e in result.elements)
+    sources = (MOTOR, GENERATOR, LOSS, GROUND)
+    for node in graph.nodes:
+        if node.split(" ")[0] in sources:
+            continue
+        inflow = sum(d["power"] for _, _, d in graph.in_edges(node, data=True))
+        outflow = sum(d["power"] for _, _, d in graph.out_edges(node, data=True))
+        _close(inflow, outflow, scale, rtol, f"flow balance at {node!r} (frame {frame})")
+    fed = sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (MOTOR, GROUND)) \
+        - sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (MOTOR, GROUND))
+    taken = sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (GENERATOR, LOSS)) \
+        - sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (GENERATOR, LOSS))
+    _close(fed, taken, scale, rtol, f"sources vs sinks (frame {frame})")
+
+
+def assert_kinematics(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """Every Willis relation, every coupling and the frame's zero speed hold."""
+    kin, model = result.kinematics, result.model
+    scale = max(abs(w) for w in kin.body_speeds.values()) or 1.0
+    _close(kin.body_speeds[model.frame_body], 0.0, scale, rtol, "frame speed")
+    for element in result.elements:
+        w_a, w_b, w_c = (kin.speed(x) for x in (element.a, element.b, element.carrier))
+        _close(w_a - w_c, element.ratio * (w_b - w_c), scale, rtol,
+               f"Willis relation of links[{element.link}]")
+    for link in model.links:
+        if link.type in ("coupling", "fixed"):
+            _close(kin.speed(link.between[0]), kin.speed(link.between[1]), scale, rtol,
+                   f"equal speeds of links[{link.index}] ({link.type})")
+
+
+def assert_equilibrium(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """Element torques plus the external torque on every body sum to zero."""
+    totals = {body.id: result.external_torques.get(body.id, 0.0) for body in result.model.bodies}
+    for element in result.elements:
+        for body, torque in element.torques.items():
+            totals[body] += torque
+    scale = max([abs(t) for t in result.external_torques.values()] + [1e-12])
+    for body, total in totals.items():
+        _close(total, 0.0, scale, rtol, f"torque balance of body {body!r}")
+
+
+def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """All of the above, with the flow balance checked in the ground frame and in the frame
+    of every body."""
+    assert_kinematics(result, rtol)
+    assert_equilibrium(result, rtol)
+    assert_power_balance(result, rtol)
+    assert_flow_balance(result, None, rtol)
+    for body in result.model.bodies:
+        assert_flow_balance(result, body.members[0], rtol)
