@@ -7,7 +7,8 @@ After a solve these must hold whatever the topology:
 - every node of the flow graph balances (``assert_flow_balance``);
 - every Willis row, coupling and the frame's zero speed (``assert_kinematics``);
 - every body is in torque equilibrium (``assert_equilibrium``);
-- every loss is >= 0 and no mesh gains power (``assert_losses_nonnegative``).
+- every loss is >= 0, and each mesh passes power from its driver with its basic
+  efficiency in its carrier's frame (``assert_mesh_law``).
 
 Examples
 --------
@@ -88,12 +89,35 @@ def assert_equilibrium(result: PowerFlowResult, rtol: float = RTOL) -> None:
         _close(total, 0.0, scale, rtol, f"torque balance of body {body!r}")
 
 
+def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """In its carrier's frame each element passes power from its driver to the other gear
+    with its basic efficiency: out = η · in, in >= 0 (Chen & Angeles' virtual power)."""
+    kin, model = result.kinematics, result.model
+    scale = _scale(result) + sum(e.virtual_power for e in result.elements)
+    for e in result.elements:
+        body_a, body_b = model.body_of[e.a], model.body_of[e.b]
+        w_c = kin.speed(e.carrier)
+        t_a = -e.force                        # torque gear a applies to the mesh
+        fed_a = t_a * (kin.body_speeds[body_a] - w_c)
+        fed_b = e.ratio * e.factor * e.force * (kin.body_speeds[body_b] - w_c)
+        if e.driver is None:
+            _close(fed_a, 0.0, scale, rtol, f"links[{e.link}] passes power but has no driver")
+            continue
+        fed_in, fed_out = (fed_a, -fed_b) if e.driver == e.a else (fed_b, -fed_a)
+        if fed_in < -rtol * scale:
+            raise AssertionError(f"links[{e.link}]: the driver {e.driver!r} takes power out")
+        _close(fed_out, e.efficiency * fed_in, scale, rtol,
+               f"links[{e.link}] carrier-frame output vs efficiency x input")
+        _close(e.virtual_power, fed_in, scale, rtol, f"links[{e.link}] virtual power")
+
+
 def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:
     """All of the above, with the flow balance checked in the ground frame and in the frame
     of every body."""
     assert_kinematics(result, rtol)
     assert_equilibrium(result, rtol)
     assert_power_balance(result, rtol)
+    assert_mesh_law(result, rtol)
     assert_flow_balance(result, None, rtol)
     for body in result.model.bodies:
         assert_flow_balance(result, body.members[0], rtol)

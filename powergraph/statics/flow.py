@@ -18,9 +18,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import networkx as nx
-
 if TYPE_CHECKING:
+    import networkx as nx
+
     from powergraph.statics.result import ElementFlow, PowerFlowResult
 
 MOTOR, GENERATOR, LOSS, GROUND = "motor", "generator", "loss", "ground"
@@ -84,9 +84,11 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
     return edges
 
 
-def flow_graph(result: "PowerFlowResult", frame: str | None = None) -> nx.DiGraph:
+def flow_graph(result: "PowerFlowResult", frame: str | None = None) -> "nx.DiGraph":
     """The flow edges as a networkx DiGraph with ``power`` on each edge and a ``kind`` on
     each node (body, frame, mesh, coupling, motor, generator, loss, ground)."""
+    import networkx as nx
+
     graph = nx.DiGraph(frame=frame)
     model = result.model
     for body in model.bodies:
@@ -112,15 +114,28 @@ def circulating_power(edges: list[Flow], tolerance: float = 1e-9) -> float:
     2.0
     """
     largest = max((e.power for e in edges), default=0.0)
-    graph = nx.DiGraph()
+    successors: dict[str, set[str]] = {}
     for edge in sorted(edges, key=lambda e: -e.power):
         if edge.power <= tolerance * max(1.0, largest):
             break
-        if edge.target in graph and edge.source in graph and \
-                nx.has_path(graph, edge.target, edge.source):
+        if _reaches(successors, edge.target, edge.source):
             return edge.power
-        graph.add_edge(edge.source, edge.target)
+        successors.setdefault(edge.source, set()).add(edge.target)
     return 0.0
+
+
+def _reaches(successors: dict[str, set[str]], start: str, goal: str) -> bool:
+    """Depth-first search (kept here so a solve need not import networkx)."""
+    seen, stack = {start}, [start]
+    while stack:
+        node = stack.pop()
+        if node == goal:
+            return True
+        for nxt in successors.get(node, ()):
+            if nxt not in seen:
+                seen.add(nxt)
+                stack.append(nxt)
+    return False
 
 
 def split_powers(edges: list[Flow], tolerance: float = 1e-9) -> dict[str, dict[str, float]]:
