@@ -52,3 +52,21 @@ def test_reference_train(case: dict) -> None:
         expected = _expected(spec, case.get("vars", {}))
         assert _quantity(result, key) == pytest.approx(
             expected, rel=spec.get("rtol", 0.0), abs=spec.get("atol", 0.0)), key
+
+
+# Models tested by hand derivations outside the data file (file -> test that covers it).
+HAND_TESTED = {
+    "bevel_differential.yaml": "tests/statics/test_trains.py::test_bevel_differential_torque_bias",
+    "closed_differential.yaml":
+        "tests/statics/test_trains.py::test_closed_differential_circulates_twice_the_input_when_ideal",
+}
+
+
+@pytest.mark.parametrize("path", sorted(MODELS.glob("*.yaml")), ids=lambda p: p.name)
+def test_every_library_model_has_a_source_and_its_own_test(path: Path) -> None:
+    model = pg.load_model(path)
+    assert model.description and len(model.description) > 40, "description gives the source"
+    covered = {case["model"] for case in CASES} | set(HAND_TESTED)
+    assert path.name in covered, f"{path.name} has no closed-form or hand-derivation test"
+    result = pg.solve(model)
+    assert_conservation(result)

@@ -1,0 +1,107 @@
+"""Side-by-side comparison of trains: ratio, efficiency both ways, circulation, rolling.
+
+Each row is computed from single solves (``powergraph.solve``) of the model and of the
+same model driven from its output (:func:`powergraph.kinematics.backdriven`), so a row
+always matches ``powergraph solve`` exactly.
+
+Examples
+--------
+>>> from powergraph.model import load_model
+>>> rows = compare_models([load_model("models/rv40e.yaml")], mesh_efficiency=0.99)  # doctest: +SKIP
+>>> rows[0].ratio                                                                   # doctest: +SKIP
+121.0
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Iterable
+
+from powergraph.errors import PowerGraphError
+from powergraph.kinematics import backdriven
+from powergraph.model.spec import Model
+from powergraph.statics import solve
+
+
+@dataclass(frozen=True)
+class ComparisonRow:
+    """One train's figures of merit (powers in W, volume in mm³, density in kW/L).
+
+    ``backdrive_efficiency`` is None (with ``backdrive_note``) where back-driving is not
+    defined (several inputs or outputs) or has no consistent solution.
+    """
+
+    name: str
+    source: str | None
+    dof: int
+    ratio: float | None
+    efficiency: float
+    self_locking: bool
+    backdrive_efficiency: float | None
+    backdrive_self_locking: bool | None
+    circulating_power: float
+    max_virtual_power_ratio: float
+    meshes: int
+    input_power: float
+    total_loss: float
+    volume_mm3: float | None = None
+    power_density_kw_per_l: float | None = None
+    backdrive_note: str | None = None
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None
+                   ) -> list[ComparisonRow]:
+    """One :class:`ComparisonRow` per model, optionally all meshes at ``mesh_efficiency``.
+
+    Parameters
+    ----------
+    models : iterable of Model
+    mesh_efficiency : float, optional
+        Compare at equal mesh quality: every mesh's basic efficiency set to this.
+    """
+    rows = []
+    for model in models:
+        if mesh_efficiency is not None:
+            model = model.with_mesh_efficiency(mesh_efficiency)
+        rows.append(compare_row(model))
+    return rows
+
+
+def compare_row(model: Model) -> ComparisonRow:
+    """The figures of merit of one model (see :class:`ComparisonRow`)."""
+    forward = solve(model)
+    back_eff, back_lock, note = _backdrive(model)
+    largest = max((e.virtual_power for e in forward.meshes), default=0.0)
+    volume, density = _volume(model, forward.output_power)
+    return ComparisonRow(
+        name=model.name, source=model.source, dof=forward.dof, ratio=forward.ratio,
+        efficiency=forward.efficiency, self_locking=forward.self_locking,
+        backdrive_efficiency=back_eff, backdrive_self_locking=back_lock,
+        circulating_power=forward.circulating_power,
+        max_virtual_power_ratio=largest / forward.input_power if forward.input_power else 0.0,
+        meshes=len(forward.meshes), input_power=forward.input_power,
+        total_loss=forward.total_loss, volume_mm3=volume, power_density_kw_per_l=density,
+        backdrive_note=note)
+
+
+def _backdrive(model: Model) -> tuple[float | None, bool | None, str | None]:
+    if len(model.inputs) != 1 or len(model.outputs) != 1:
+        return None, None, "back-driving needs one input and one output"
+    try:
+        result = solve(backdriven(model))
+    except PowerGraphError as exc:
+        return None, None, str(exc)
+    return result.efficiency, result.self_locking, None
+
+
+def _volume(model: Model, output_power: float) -> tuple[float | None, float | None]:
+    if not any(c.geometry is not None for c in model.components.values()):
+        return None, None
+    from powergraph.analyses.volume import model_volume
+
+    result = model_volume(model)
+    if result is None or result.total_mm3 <= 0:
+        return None, None
+    return result.total_mm3, result.power_density(output_power)

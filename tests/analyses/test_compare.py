@@ -1,0 +1,89 @@
+"""`compare`: rows equal single solves; back-driving and self-locking; table, JSON, chart."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import powergraph as pg
+from powergraph.analyses.compare import compare_models
+from powergraph.cli.main import main
+from powergraph.kinematics import backdriven
+from powergraph.model import loads_model
+from powergraph.testing import assert_conservation
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+KEYS = {"name", "ratio", "efficiency", "backdrive_efficiency", "backdrive_self_locking",
+        "circulating_power", "max_virtual_power_ratio", "meshes"}
+
+
+def test_rows_match_single_solves_exactly() -> None:
+    paths = sorted(MODELS.glob("*.yaml"))
+    models = [pg.load_model(p) for p in paths]
+    for model, row in zip(models, compare_models(models)):
+        forward = pg.solve(model)
+        assert_conservation(forward)
+        assert row.efficiency == forward.efficiency and row.ratio == forward.ratio
+        assert row.circulating_power == forward.circulating_power
+        assert row.meshes == len(model.meshes)
+        assert row.max_virtual_power_ratio == max(
+            e.virtual_power for e in forward.meshes) / forward.input_power
+        if len(model.inputs) == 1 and len(model.outputs) == 1:
+            back = pg.solve(backdriven(model))
+            assert_conservation(back)
+            assert row.backdrive_efficiency == back.efficiency
+            assert row.backdrive_self_locking == (back.efficiency <= 0)
+        else:
+            assert row.backdrive_efficiency is None and row.backdrive_note
+
+
+def test_wolfrom_backdriven_at_095_self_locks() -> None:
+    row, = compare_models([pg.load_model(MODELS / "wolfrom_3k.yaml")], mesh_efficiency=0.95)
+    assert row.backdrive_self_locking is True and row.backdrive_efficiency < 0
+    assert row.efficiency > 0 and not row.self_locking
+
+
+def test_unseen_khv_stage_self_locks_backwards() -> None:
+    """Hand derivation. w_p = -w_H/N. Back-driven, the planet feeds T_p (w_p - w_H) =
+    T_p w_p (N + 1) > 0 in the eccentric's frame, so the ring receives:
+    T_r (-w_H) = -η T_p (w_p - w_H) → T_r = -η T_p (N + 1)/N; T_H = -T_p - T_r;
+    η_back = -T_H w_H / (T_p w_p) = (N + 1) η - N, < 0 when η < N/(N + 1)."""
+    text = """
+name: K-H-V N=49
+components: {0: {role: frame}, H: {}, p: {teeth: 49}, r: {teeth: 50, internal: true}, out: {}}
+links:
+  - {type: mesh, between: [p, r], carrier: H, efficiency: 0.97}
+  - {type: fixed, between: [r, 0]}
+  - {type: coupling, between: [p, out]}
+ports: [{component: H, role: input, speed: 100, power: 10}, {component: out, role: output}]
+"""
+    row, = compare_models([loads_model(text)])
+    n, eta = 49.0, 0.97
+    assert row.efficiency == pytest.approx(eta / (n + 1 - n * eta), rel=1e-12)
+    assert row.backdrive_efficiency == pytest.approx((n + 1) * eta - n, rel=1e-12)
+    assert row.backdrive_self_locking is True
+
+
+def test_compare_json_has_the_issue_keys(capsys) -> None:
+    paths = [str(MODELS / "rv40e.yaml"), str(MODELS / "wolfrom_3k.yaml")]
+    assert main(["compare", *paths, "--json", "--mesh-efficiency", "0.98"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["name"] for r in rows] == ["RV-40E", "Wolfrom 3K"]
+    assert all(KEYS <= set(r) for r in rows)
+    single = pg.solve(pg.load_model(paths[0]).with_mesh_efficiency(0.98))
+    assert rows[0]["efficiency"] == single.efficiency
+
+
+def test_compare_table_and_chart(tmp_path, capsys) -> None:
+    out = tmp_path / "chart.svg"
+    assert main(["compare", str(MODELS / "rv40e.yaml"), str(MODELS / "tuplin_256.yaml"),
+                 "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "RV-40E" in text and "locks back" in text and out.stat().st_size > 1000
+    assert out.read_text().lstrip().startswith("<?xml")
+
+
+def test_compare_bad_output_suffix_exits_2(tmp_path) -> None:
+    assert main(["compare", str(MODELS / "rv40e.yaml"), "-o", str(tmp_path / "x.txt")]) == 2
+    assert not (tmp_path / "x.txt").exists()
