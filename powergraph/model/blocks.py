@@ -15,11 +15,12 @@ from typing import Any, Mapping
 from powergraph.model.spec import Component
 
 
-def validate_geometry(raw: Any, path: str) -> Any:
-    """Validate a component's ``geometry`` block (see :mod:`block_geometry`)."""
+def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Any:
+    """Validate a component's ``geometry`` block (see :mod:`block_geometry`); the
+    component's teeth let checks such as "bore inside the root circle" run at load time."""
     from powergraph.model.block_geometry import validate_geometry as validate
 
-    return validate(raw, path)
+    return validate(raw, path, teeth=teeth)
 
 
 def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],

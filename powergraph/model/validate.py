@@ -175,7 +175,7 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
     if geometry is not None:
         from powergraph.model.blocks import validate_geometry
 
-        geometry = validate_geometry(geometry, f"{path}.geometry")
+        geometry = validate_geometry(geometry, f"{path}.geometry", teeth=teeth)
     return Component(id=cid, raw_id=raw_id, name=_text(attrs.get("name"), f"{path}.name"),
                      role=role, kind=_text(attrs.get("kind"), f"{path}.kind"), teeth=teeth,
                      internal=internal, count=count, geometry=geometry,
