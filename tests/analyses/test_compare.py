@@ -87,3 +87,16 @@ def test_compare_table_and_chart(tmp_path, capsys) -> None:
 def test_compare_bad_output_suffix_exits_2(tmp_path) -> None:
     assert main(["compare", str(MODELS / "rv40e.yaml"), "-o", str(tmp_path / "x.txt")]) == 2
     assert not (tmp_path / "x.txt").exists()
+
+
+def test_volume_and_power_density_columns_when_geometry_is_present() -> None:
+    from powergraph.volume import model_volume
+
+    rv = pg.load_model(MODELS / "rv40e.yaml")
+    row, plain = compare_models([rv, pg.load_model(MODELS / "wolfrom_3k.yaml")])
+    total = model_volume(rv).total_mm3
+    assert row.volume_mm3 == total
+    # power density = output power / volume, in kW/L (1 L = 1e6 mm³)
+    assert row.power_density_kw_per_l == pytest.approx(
+        pg.solve(rv).output_power / 1000 / (total / 1e6), rel=1e-12)
+    assert plain.volume_mm3 is None and plain.power_density_kw_per_l is None
