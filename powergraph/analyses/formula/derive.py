@@ -1,0 +1,158 @@
+"""Derive a train's closed-form ratio and efficiency by mirroring the numeric solver.
+
+1. Numeric solve at the model's values (:func:`powergraph.statics.solve`): which gear
+   drives each element in its carrier's frame (the direction pattern).
+2. Symbolic Willis rows -> every body's speed relative to the input -> the ratio.
+3. The same torque balance as :mod:`powergraph.statics.equilibrium`, with ``f = eta`` or
+   ``1/eta`` from the pattern -> the output torque -> efficiency = output / input power.
+4. The conditions: each driver keeps feeding power in its carrier's frame (> 0), and the
+   denominators do not vanish.
+"""
+from __future__ import annotations
+
+from types import MappingProxyType
+from typing import Any, Mapping
+
+import sympy as sp
+
+from powergraph.analyses.formula.equations import body_speeds, torque_balance
+from powergraph.analyses.formula.readable import orient, readable, sign_factors
+from powergraph.analyses.formula.result import Condition, Direction, FormulaResult
+from powergraph.analyses.formula.symbols import SymbolTable, build_symbols
+from powergraph.errors import MethodNotApplicableError
+from powergraph.kinematics import Element, elements_of
+from powergraph.model.spec import Model
+from powergraph.statics import PowerFlowResult, solve
+
+
+def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) -> FormulaResult:
+    """Closed-form ratio and efficiency of a one-input, one-output, 1-DOF train.
+
+    Parameters
+    ----------
+    model : Model
+        The train; its values fix the power-direction pattern the formulas are for.
+    relations : mapping, optional
+        ``{symbol name: expression}`` substituted before simplifying, e.g.
+        ``{"z_4": "z_5 - 1"}`` (the one-tooth difference of a cycloid stage). Each must
+        hold at the model's values.
+
+    Returns
+    -------
+    FormulaResult
+
+    Raises
+    ------
+    MethodNotApplicableError
+        Not one input and one output, more than one DOF, no input power, or a train whose
+        equations have no unique solution in independent symbols.
+    ModelError, SolveError
+        From the numeric solve.
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> f = derive_formulas(load_model("models/rv40e.yaml"), {"z_4": "z_5 - 1"})  # doctest: +SKIP
+    >>> f.ratio                                                                  # doctest: +SKIP
+    1 + z_2*z_5/z_1
+    """
+    _check_ports(model)
+    numeric = solve(model)
+    _check_solved(numeric)
+    elements = elements_of(model)
+    table = build_symbols(model, elements, relations)
+    values = {table.symbols[n]: i.value for n, i in table.info.items()}
+    input_body = model.body_of[model.inputs[0].component]
+    output_body = model.body_of[model.outputs[0].component]
+    speeds = body_speeds(model, elements, table.willis, input_body)
+    w_out = speeds[output_body]
+    if w_out == 0:
+        raise MethodNotApplicableError("the output does not turn for independent tooth "
+                                       "numbers: no ratio")
+    codes = {flow.link: _code(flow.driver, flow.a, flow.b) for flow in numeric.elements}
+    factors = [_factor(codes[el.link], table.efficiency[el.link]) for el in elements]
+    sign = 1 if numeric.input_power > 0 else -1  # powers keep the model's signs
+    forces, t_out = torque_balance(model, elements, table.willis, factors, input_body,
+                                   output_body, sign)
+    ratio = sp.cancel(1 / w_out)
+    efficiency = sp.cancel(-sign * t_out * w_out)  # (-T_out w_out) / (T_in w_in), w_in = 1
+    conditions = _power_conditions(elements, codes, factors, forces, speeds, table, values)
+    conditions += [_denominator(ratio, "ratio", table, values),
+                   _denominator(efficiency, "efficiency", table, values)]
+    return FormulaResult(
+        name=model.name, ratio=readable(ratio, values), efficiency=readable(efficiency, values),
+        symbols=MappingProxyType(dict(table.symbols)), info=MappingProxyType(dict(table.info)),
+        directions=_directions(elements, codes, factors, table), conditions=tuple(conditions),
+        relations=MappingProxyType(dict(table.relations)),
+        numeric=MappingProxyType({"ratio": numeric.ratio, "efficiency": numeric.efficiency}),
+        model=model)
+
+
+def _directions(elements: tuple[Element, ...], codes: Mapping[int, int],
+                factors: list[sp.Expr], table: SymbolTable) -> tuple[Direction, ...]:
+    """The pattern: who drives each lossy element in its carrier's frame."""
+    return tuple(Direction(el.link, el.kind, el.a, el.b, el.carrier,
+                           _driver(codes[el.link], el), f)
+                 for el, f in zip(elements, factors) if table.efficiency[el.link] != 1)
+
+
+def _check_ports(model: Model) -> None:
+    if len(model.inputs) != 1 or len(model.outputs) != 1:
+        raise MethodNotApplicableError(
+            f"closed forms are derived for one input and one output; this train has "
+            f"{len(model.inputs)} input(s) and {len(model.outputs)} output(s)", "ports")
+
+
+def _check_solved(numeric: PowerFlowResult) -> None:
+    if numeric.dof != 1:
+        raise MethodNotApplicableError(
+            f"closed forms are derived for 1-DOF trains; this one has {numeric.dof} DOF")
+    if numeric.input_power == 0:
+        raise MethodNotApplicableError("no power enters at the input: no efficiency")
+
+
+def _code(driver: str | None, a: str, b: str) -> int:
+    return 1 if driver == a else (-1 if driver == b and driver is not None else 0)
+
+
+def _driver(code: int, el: Element) -> str | None:
+    return el.a if code > 0 else (el.b if code < 0 else None)
+
+
+def _factor(code: int, eta: sp.Expr) -> sp.Expr:
+    return eta if code > 0 else (1 / eta if code < 0 else sp.Integer(1))
+
+
+def _power_conditions(elements: tuple[Element, ...], codes: Mapping[int, int],
+                      factors: list[sp.Expr], forces: list[sp.Expr],
+                      speeds: Mapping[str, sp.Expr], table: SymbolTable,
+                      values: Mapping[sp.Symbol, float]) -> list[Condition]:
+    """Each lossy element's driver keeps feeding power in its carrier's frame."""
+    out = []
+    for el, f, lam in zip(elements, factors, forces):
+        if table.efficiency[el.link] == 1:
+            continue
+        code = codes[el.link]
+        power_a = sp.cancel(-lam * (speeds[el.body_a] - speeds[el.body_c]))
+        where = f"links[{el.link}] {el.kind} {el.a}-{el.b} (carrier {el.carrier})"
+        if code == 0:
+            if power_a == 0:
+                continue
+            quantity, relation = power_a, "="
+            text = f"{where}: passes no power"
+        else:
+            quantity = power_a if code > 0 else sp.cancel(-power_a * f)
+            relation = ">"
+            text = f"{where}: {_driver(code, el)} keeps driving"
+        sign, kept = sign_factors(quantity, table.positive, values, keep_even=relation == "=")
+        out.append(Condition("power", text, orient(sp.factor(quantity), values), relation,
+                             sign, tuple(kept), el.link))
+    return out
+
+
+def _denominator(expr: sp.Expr, what: str, table: SymbolTable,
+                 values: Mapping[sp.Symbol, float]) -> Condition:
+    denominator = sp.fraction(sp.cancel(expr))[1]
+    sign, kept = sign_factors(denominator, table.positive, values, keep_even=True)
+    return Condition("denominator", f"the {what}'s denominator ≠ 0",
+                     orient(sp.factor(denominator), values), "!=", sign, tuple(kept))
