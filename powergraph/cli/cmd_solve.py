@@ -33,10 +33,37 @@ def run(args: argparse.Namespace) -> int:
         from powergraph.statics import solve
 
         result = solve(model)
+    fluctuation = _cycloid_fluctuation(model)
     if args.json:
-        print_json(result.to_dict())
+        data = result.to_dict()
+        if fluctuation is not None:
+            data["cycloid_fluctuation"] = fluctuation.to_dict()
+        print_json(data)
     else:
         from powergraph.statics.report import text_report
 
         print(result.text_report() if hasattr(result, "text_report") else text_report(result))
+        if fluctuation is not None:
+            print(_fluctuation_text(fluctuation.to_dict()))
     return 0
+
+
+def _cycloid_fluctuation(model):
+    """The output's ratio fluctuation from meshes carrying a ``cycloid`` block (issue 7)."""
+    if not any("cycloid" in link.blocks for link in model.meshes):
+        return None
+    from powergraph.analyses.cycloid import train_fluctuation
+
+    return train_fluctuation(model)
+
+
+def _fluctuation_text(data: dict) -> str:
+    lines = ["", "ratio fluctuation from cycloid profile errors (input speed held)"]
+    for stage in data["stages"]:
+        lines.append(
+            f"  mesh {stage['disc']}-{stage['ring']}: profile error "
+            f"{stage['profile_error'] * 1000:g} um -> stage max |di| "
+            f"{stage['stage_max_deviation_percent']:.4f} % (paper's 2-degree method "
+            f"{stage['stage_max_deviation_percent_2deg']:.4f} %), at the output "
+            f"{stage['max_deviation_percent']:.4f} % of the ratio {data['ratio_nominal']:.6g}")
+    return "\n".join(lines)

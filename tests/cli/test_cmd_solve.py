@@ -97,3 +97,18 @@ def test_solve_does_not_import_matplotlib_or_sympy() -> None:
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 0
     assert "MPL" not in proc.stderr and "SYMPY" not in proc.stderr
+
+
+def test_solve_reports_the_cycloid_fluctuation_at_the_output(capsys) -> None:
+    """RV: i_train = 1 + (z2/z1)(1 + i_stage) = 4 + 3 i_stage, so a relative stage deviation
+    δ shows at the output as 3 i_stage/i_train δ = (117/121) δ (input speed held)."""
+    path = str(ROOT / "models" / "rv40e_profile_error.yaml")
+    assert main(["solve", path, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    stage, = out["cycloid_fluctuation"]["stages"]
+    assert stage["max_deviation_percent"] == pytest.approx(
+        stage["stage_max_deviation_percent"] * 117 / 121, rel=1e-9)
+    assert stage["stage_max_deviation_percent"] > 0
+    assert out["efficiency"] == pytest.approx(0.287376, abs=5e-7)  # the block changes no power
+    assert main(["solve", RV, "--json"]) == 0
+    assert "cycloid_fluctuation" not in json.loads(capsys.readouterr().out)
