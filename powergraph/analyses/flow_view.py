@@ -1,0 +1,246 @@
+"""What a power-flow diagram shows: the flows seen from one body, with their labels.
+
+A :class:`FlowView` is the drawing-independent content of one diagram (the paper's
+Figs. 5-10): every arrow of the flow graph with its power, the kind of every node, the
+power the shares are taken of, and the arrows that lie on a circulating loop. It is
+built from a virtual-power result (``powergraph.solve``) or from any result that lists
+its flows as ``[{from, to, power}]`` in ``to_dict()["flows"]`` (``--method wang2021``).
+
+Examples
+--------
+>>> import powergraph as pg
+>>> result = pg.solve(pg.load_model("models/rv40e.yaml"))      # doctest: +SKIP
+>>> view = flow_view(result, frame="3")                         # doctest: +SKIP
+>>> view.title                                                  # doctest: +SKIP
+'RV-40E: virtual powers seen from 2/3 (held as the frame)'
+>>> format_power(2270.0), format_share(2063.26, 2270.0)
+('2.27 kW', '90.9 %')
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import networkx as nx
+
+from powergraph.errors import UsageError
+from powergraph.statics.flow import GENERATOR, GROUND, LOSS, MOTOR, Flow, circulating_power
+
+#: Node kinds a diagram knows how to draw.
+KINDS = ("body", "frame", "mesh", "coupling", "motor", "generator", "loss", "ground")
+
+
+@dataclass(frozen=True)
+class FlowView:
+    """The content of one power-flow diagram (no geometry).
+
+    Attributes
+    ----------
+    name : str
+        Model name.
+    frame_body : str or None
+        Body whose frame the powers are seen from; None for the actual powers.
+    flows : tuple of Flow
+        Every arrow, in the result's order (zero-power arrows included).
+    kinds : mapping
+        Node name -> one of :data:`KINDS`.
+    held : str or None
+        The body drawn as the frame: the observer in a moving view, else the housing.
+    input_power : float
+        The actual input power P; every share is ``power / P``.
+    circulating : float
+        Circulating power of the flows shown (W, 0 when they have no directed cycle).
+    loop_edges : frozenset of (source, target)
+        Arrows on a directed cycle of positive power.
+    method : str
+        Method of the result ("virtual-power", "wang2021", ...).
+    reference : tuple of Flow
+        The actual flows, when this view is from a moving body: a layout hint that keeps
+        members idle in this view (zero power) in their actual order.
+    """
+
+    name: str
+    frame_body: str | None
+    flows: tuple[Flow, ...]
+    kinds: Mapping[str, str]
+    held: str | None
+    input_power: float
+    circulating: float
+    loop_edges: frozenset
+    method: str = "virtual-power"
+    reference: tuple[Flow, ...] = ()
+
+    @property
+    def title(self) -> str:
+        """Whose frame the powers are seen from."""
+        if self.frame_body is None:
+            return f"{self.name}: actual powers (ground frame)"
+        return f"{self.name}: virtual powers seen from {self.frame_body} (held as the frame)"
+
+    @property
+    def largest(self) -> float:
+        return max((f.power for f in self.flows), default=0.0)
+
+    def is_zero(self, flow: Flow) -> bool:
+        """A flow too small to draw as carrying power (frame links, rounding noise)."""
+        return flow.power <= 1e-9 * max(self.largest, 1e-300)
+
+    def label(self, flow: Flow) -> str:
+        """``'2.06 kW\\n90.9 %'``: the power and its share of the input power."""
+        power = 0.0 if self.is_zero(flow) else flow.power
+        return f"{format_power(power)}\n{format_share(power, self.input_power)}"
+
+
+def format_power(watts: float) -> str:
+    """Power with three significant digits in mW, W, kW or MW.
+
+    >>> [format_power(p) for p in (0.0, 0.01473, 135.07, 999.96, 2270.0, 26093.7)]
+    ['0 W', '14.7 mW', '135 W', '1.00 kW', '2.27 kW', '26.1 kW']
+    """
+    if watts == 0 or not math.isfinite(watts):
+        return "0 W" if watts == 0 else f"{watts} W"
+    for scale, unit in ((1e6, "MW"), (1e3, "kW"), (1.0, "W"), (1e-3, "mW")):
+        value = float(f"{abs(watts) / scale:.3g}")
+        if value >= 1.0 or unit == "mW":
+            sign = "-" if watts < 0 else ""
+            text = f"{value:#.3g}".rstrip(".") if value < 1000 else f"{value:,.0f}"
+            return f"{sign}{text} {unit}"
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def format_share(power: float, reference: float) -> str:
+    """``power / reference`` in percent, three significant digits (no exponent).
+
+    >>> [format_share(p, 2270.0) for p in (0.0, 2270.0, 71.66, 26093.7)]
+    ['0 %', '100 %', '3.16 %', '1,150 %']
+    """
+    if not reference or not math.isfinite(reference):
+        return "- %"
+    share = 100.0 * power / abs(reference)
+    if share == 0:
+        return "0 %"
+    rounded = float(f"{share:.3g}")
+    return f"{rounded:,.0f} %" if abs(rounded) >= 100 else f"{rounded:#.3g}".rstrip(".") + " %"
+
+
+def flow_view(result: Any, frame: str | int | None = None) -> FlowView:
+    """The diagram content of ``result`` seen from the body of component ``frame``.
+
+    Parameters
+    ----------
+    result : PowerFlowResult or a result with ``to_dict()["flows"]``
+    frame : component id (or body id such as ``"2/3"``), optional
+        None, or any member of the housing, gives the actual powers.
+
+    Raises
+    ------
+    UsageError
+        ``frame`` names no component or body, or the result has no view from a frame.
+    """
+    model = getattr(result, "model", None)
+    component = _frame_component(model, frame)
+    frame_body = None
+    if component is not None and model is not None and \
+            model.body_of[component] != model.frame_body:
+        frame_body = model.body_of[component]
+    flows = _flows(result, component)
+    kinds = _kinds(result, model, flows, component)
+    held = frame_body if frame_body is not None else (model.frame_body if model else None)
+    if held is not None and held in kinds:
+        kinds = {n: ("frame" if n == held else ("body" if k == "frame" else k))
+                 for n, k in kinds.items()}
+    return FlowView(name=_name(result, model), frame_body=frame_body, flows=tuple(flows),
+                    kinds=kinds, held=held, input_power=_input_power(result, flows),
+                    circulating=circulating_power(list(flows)),
+                    loop_edges=loop_edges(flows),
+                    method=str(getattr(result, "method", "virtual-power")),
+                    reference=tuple(_flows(result, None)) if frame_body is not None else ())
+
+
+def loop_edges(flows: tuple[Flow, ...] | list[Flow], tolerance: float = 1e-9) -> frozenset:
+    """Arrows of positive power that lie on a directed cycle (circulating power).
+
+    >>> sorted(loop_edges([Flow("a", "b", 5.0), Flow("b", "a", 2.0), Flow("b", "c", 9.0)]))
+    [('a', 'b'), ('b', 'a')]
+    """
+    largest = max((f.power for f in flows), default=0.0)
+    graph = nx.DiGraph()
+    graph.add_edges_from((f.source, f.target) for f in flows
+                         if f.power > tolerance * max(largest, 1e-300))
+    loops = [c for c in nx.strongly_connected_components(graph) if len(c) > 1]
+    return frozenset((u, v) for c in loops for u, v in graph.subgraph(c).edges)
+
+
+def _frame_component(model, frame) -> str | None:
+    if frame is None:
+        return None
+    key = str(frame)
+    if model is None:
+        raise UsageError(f"--frame {frame}: this result has no model to take a frame from")
+    if key in model.components:
+        return key
+    for body in model.bodies:
+        if body.id == key:
+            return body.members[0]
+    known = ", ".join(str(model.raw_id(c)) for c in model.components)
+    raise UsageError(f"--frame {frame}: unknown component {key!r} (components: {known})")
+
+
+def _flows(result, component: str | None) -> list[Flow]:
+    """The flows of ``result`` seen from ``component``. A result whose ``flows()`` takes
+    no frame (the paper's method) is seen from a frame through its ``realisation``
+    (the virtual-power result that carries its losses), if it has one."""
+    source = result
+    if component is not None:
+        try:
+            items = result.flows(component)
+        except TypeError:
+            source = getattr(result, "realisation", None)
+            if not callable(getattr(source, "flows", None)):
+                raise UsageError("this result cannot be seen from another frame "
+                                 "(draw it without --frame)") from None
+            items = source.flows(component)
+    elif callable(getattr(result, "flows", None)):
+        items = result.flows()
+    else:
+        items = result.to_dict()["flows"]
+    return [item if isinstance(item, Flow)
+            else Flow(str(item["from"]), str(item["to"]), float(item["power"]))
+            for item in items]
+
+
+def _kinds(result, model, flows, component) -> dict[str, str]:
+    kinds: dict[str, str] = {}
+    if callable(getattr(result, "flow_graph", None)):
+        graph = result.flow_graph(component) if component is not None else result.flow_graph()
+        kinds = {n: d.get("kind", "body") for n, d in graph.nodes(data=True)}
+    elif model is not None:
+        kinds = {b.id: ("frame" if b.is_frame else "body") for b in model.bodies}
+    for flow in flows:
+        for node in (flow.source, flow.target):
+            kinds.setdefault(node, _kind_from_name(node))
+    return {n: (k if k in KINDS else "body") for n, k in kinds.items()}
+
+
+def _kind_from_name(node: str) -> str:
+    head = node.split(" ")[0]
+    if head in (MOTOR, GENERATOR) or node in (LOSS, GROUND):
+        return head
+    if head in ("mesh", "coupling") and " " in node:
+        return head
+    return "body"
+
+
+def _name(result, model) -> str:
+    name = getattr(result, "name", None) or (model.name if model is not None else None)
+    return str(name) if name else "gear train"
+
+
+def _input_power(result, flows: list[Flow]) -> float:
+    power = getattr(result, "input_power", None)
+    if power is None and callable(getattr(result, "to_dict", None)):
+        power = result.to_dict().get("input_power")
+    if power is None:
+        power = sum(f.power for f in flows if f.source.split(" ")[0] == MOTOR)
+    return float(power)
