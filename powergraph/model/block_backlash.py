@@ -45,7 +45,7 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.units import parse_quantity
+from powergraph.model.units import parse_number
 
 BACKLASH_FIELDS = ("module", "pressure_angle", "pin_diameter", "standard_M", "measured_M",
                    "runout", "bearing_clearance", "assembly")
@@ -113,28 +113,11 @@ def validate_backlash(raw: Mapping, path: str, pair: tuple, components: Mapping)
         raise ModelError("give either backlash or backlash_arcmin on a mesh, not both",
                          f"{path}.backlash_arcmin")
     if "backlash_arcmin" in raw:
-        blocks["backlash_arcmin"] = _number(raw["backlash_arcmin"], f"{path}.backlash_arcmin",
+        blocks["backlash_arcmin"] = parse_number(raw["backlash_arcmin"], f"{path}.backlash_arcmin",
                                             minimum=0.0)
     if "backlash" in raw:
         blocks["backlash"] = _block(raw["backlash"], f"{path}.backlash", pair, components)
     return blocks
-
-
-def _number(value: Any, path: str, minimum: float | None = None, positive: bool = False,
-            length: bool = False) -> float:
-    if length and isinstance(value, str):
-        number = parse_quantity(value, "length", path)
-    elif isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ModelError(f"must be a number, got {value!r}", path)
-    else:
-        number = float(value)
-    if not math.isfinite(number):
-        raise ModelError(f"must be finite, got {value!r}", path)
-    if positive and number <= 0:
-        raise ModelError(f"must be > 0, got {value!r}", path)
-    if minimum is not None and number < minimum:
-        raise ModelError(f"must be >= {minimum:g}, got {value!r}", path)
-    return number
 
 
 def _roles(pair: tuple, components: Mapping, path: str) -> tuple[str, str]:
@@ -166,17 +149,17 @@ def _block(raw: Any, path: str, pair: tuple, components: Mapping) -> BacklashBlo
             raise ModelError("missing (a backlash block needs module, pin_diameter, "
                              "standard_M and measured_M)", f"{path}.{key}")
     internal, external = _roles(pair, components, path)
-    module = _number(raw["module"], f"{path}.module", positive=True, length=True)
-    alpha = _number(raw.get("pressure_angle", 20.0), f"{path}.pressure_angle", positive=True)
+    module = parse_number(raw["module"], f"{path}.module", positive=True, length=True)
+    alpha = parse_number(raw.get("pressure_angle", 20.0), f"{path}.pressure_angle", positive=True)
     if alpha >= 45.0:
         raise ModelError(f"pressure angle must be in (0, 45) degrees, got {alpha:g}",
                          f"{path}.pressure_angle")
-    pin = _number(raw["pin_diameter"], f"{path}.pin_diameter", positive=True, length=True)
+    pin = parse_number(raw["pin_diameter"], f"{path}.pin_diameter", positive=True, length=True)
     standard = _per_gear(raw["standard_M"], f"{path}.standard_M", pair,
-                         lambda v, p: _number(v, p, positive=True, length=True))
+                         lambda v, p: parse_number(v, p, positive=True, length=True))
     measured = _per_gear(raw["measured_M"], f"{path}.measured_M", pair, _m_list)
     runout = _per_gear(raw.get("runout", {g: 0.0 for g in pair}), f"{path}.runout", pair,
-                       lambda v, p: _number(v, p, minimum=0.0, length=True))
+                       lambda v, p: parse_number(v, p, minimum=0.0, length=True))
     bearings = _bearings(raw.get("bearing_clearance", []), f"{path}.bearing_clearance",
                          "bearing_clearance" in raw)
     assembly = raw.get("assembly", "standard")
@@ -221,7 +204,7 @@ def _m_list(raw: Any, path: str) -> tuple[float, ...]:
     values = raw if isinstance(raw, list) else [raw]
     if not values:
         raise ModelError("must be a non-empty list of over-pin distances (mm)", path)
-    return tuple(_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
+    return tuple(parse_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
                          positive=True, length=True) for i, v in enumerate(values))
 
 
@@ -230,7 +213,7 @@ def _bearings(raw: Any, path: str, given: bool) -> tuple[float, ...]:
     if given and not values:
         raise ModelError("must be a non-empty list of radial clearances u_r (mm); "
                          "leave the field out when there are none", path)
-    return tuple(_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
+    return tuple(parse_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
                          minimum=0.0, length=True) for i, v in enumerate(values))
 
 

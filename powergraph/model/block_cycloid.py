@@ -33,12 +33,11 @@ Examples
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.units import parse_quantity
+from powergraph.model.units import parse_number
 
 CYCLOID_FIELDS = ("module", "profile_error", "shift", "rc")
 REQUIRED_FIELDS = ("module", "profile_error")
@@ -100,31 +99,21 @@ def validate_cycloid(raw: Any, path: str, pair: tuple, components: Mapping) -> C
             raise ModelError("missing (a cycloid block needs module and profile_error)",
                              f"{path}.{key}")
     disc, ring = _roles(pair, components, path)
-    module = _value(raw["module"], f"{path}.module", length=True)
+    module = parse_number(raw["module"], f"{path}.module", length=True)
     if module <= 0:
         raise ModelError(f"must be > 0 mm, got {raw['module']!r}", f"{path}.module")
-    error = _value(raw["profile_error"], f"{path}.profile_error", length=True)
+    error = parse_number(raw["profile_error"], f"{path}.profile_error", length=True)
     if error < 0:
         raise ModelError(f"must be >= 0 mm, got {raw['profile_error']!r}",
                          f"{path}.profile_error")
-    shift = _value(raw.get("shift", 0.3), f"{path}.shift")
+    shift = parse_number(raw.get("shift", 0.3), f"{path}.shift")
     if not 0.0 < shift < 1.0:
         raise ModelError(f"must be in (0, 1), got {raw['shift']!r}", f"{path}.shift")
-    rc = _value(raw.get("rc", 1.0), f"{path}.rc")
+    rc = parse_number(raw.get("rc", 1.0), f"{path}.rc")
     if rc <= 0:
         raise ModelError(f"must be > 0, got {raw['rc']!r}", f"{path}.rc")
     return CycloidBlock(module=module, profile_error=error, disc=disc, ring=ring,
                         teeth=components[disc].teeth, shift=shift, rc=rc)
-
-
-def _value(value: Any, path: str, length: bool = False) -> float:
-    if length and isinstance(value, str):
-        return parse_quantity(value, "length", path)
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ModelError(f"must be a number, got {value!r}", path)
-    if not math.isfinite(value):
-        raise ModelError(f"must be finite, got {value!r}", path)
-    return float(value)
 
 
 def _roles(pair: tuple, components: Mapping, path: str) -> tuple[str, str]:

@@ -47,7 +47,7 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
             continue
         speed = kin.speed(port.component)
         if abs(speed) < 1e-12:
-            raise StaticsError(f"a power is given but the component does not turn "
+            raise StaticsError("a power is given but the component does not turn "
                                f"(speed 0), so its torque is unknown; give a torque instead",
                                f"{port.path}.power")
         given[body] = power / speed if port.role == "input" else -power / speed
