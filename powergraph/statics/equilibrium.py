@@ -48,7 +48,7 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
         speed = kin.speed(port.component)
         if abs(speed) < 1e-12:
             raise StaticsError("a power is given but the component does not turn "
-                               f"(speed 0), so its torque is unknown; give a torque instead",
+                               "(speed 0), so its torque is unknown; give a torque instead",
                                f"{port.path}.power")
         given[body] = power / speed if port.role == "input" else -power / speed
     unknown = [model.body_of[p.component] for p in model.ports
