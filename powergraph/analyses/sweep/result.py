@@ -1,0 +1,206 @@
+"""The result of a sweep: frozen arrays over the variants, with CSV and dict views."""
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from powergraph.analyses.sweep.engine import STATUS
+
+#: Columns after the PATHs in the CSV (SPEC §2, issue 9); ``extra=True`` adds the rest.
+CSV_COLUMNS = ("ratio", "efficiency")
+EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
+                 "status")
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """Ratio, efficiency, losses and flags of every variant of a sweep.
+
+    Every array has the broadcast shape of the swept values (``shape``).
+
+    Attributes
+    ----------
+    name : str
+        The model's name.
+    parameters : Mapping[str, ndarray]
+        The swept values, by PATH, in the order given.
+    ratio : ndarray
+        Input speed / output speed (NaN without one input and one output, or where the
+        speeds are not determined).
+    efficiency : ndarray
+        Output power / input power by the virtual-power method; NaN where not converged.
+    input_power, output_power, total_loss : ndarray
+        W.
+    losses : Mapping[int, ndarray]
+        Loss of each mesh and coupling, W, by link index.
+    drivers : Mapping[int, ndarray]
+        Who drives each element in its carrier's frame: +1 gear a, -1 gear b, 0 nothing.
+    self_locking : ndarray of bool
+        ``efficiency <= 0``: the input cannot drive the output (False where not converged).
+    converged : ndarray of bool
+        The variant was solved: its directions settled and its speeds and loads are
+        determined. Where False, ``status`` says why and the powers are NaN.
+    status : ndarray of int8
+        Index into :data:`~powergraph.analyses.sweep.engine.STATUS`: ``ok``, ``cycle``
+        (the directions cycle: no consistent pattern), ``unsettled``, ``speeds`` (Willis
+        rows singular), ``loads`` (loads not determined).
+    passes : ndarray
+        Passes of the direction iteration.
+    backend : str
+        ``symbolic`` (compiled closed forms) or ``numeric`` (batched linear solves).
+    """
+
+    name: str
+    parameters: Mapping[str, np.ndarray]
+    ratio: np.ndarray
+    efficiency: np.ndarray
+    input_power: np.ndarray
+    output_power: np.ndarray
+    total_loss: np.ndarray
+    losses: Mapping[int, np.ndarray]
+    drivers: Mapping[int, np.ndarray]
+    self_locking: np.ndarray
+    converged: np.ndarray
+    status: np.ndarray
+    passes: np.ndarray
+    backend: str
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return self.efficiency.shape
+
+    @property
+    def size(self) -> int:
+        return int(self.efficiency.size)
+
+    def __len__(self) -> int:
+        return self.size
+
+    @property
+    def paths(self) -> tuple[str, ...]:
+        return tuple(self.parameters)
+
+    def status_counts(self) -> dict[str, int]:
+        """How many variants have each status (only the statuses that occur)."""
+        counts = np.bincount(self.status.ravel(), minlength=len(STATUS))
+        return {name: int(c) for name, c in zip(STATUS, counts) if c}
+
+    def curves(self, x: str | None = None) -> tuple[str, dict[str, np.ndarray]]:
+        """Group the variants into curves over one PATH, for plotting.
+
+        Parameters
+        ----------
+        x : str, optional
+            The PATH along the curves (default: the first swept PATH).
+
+        Returns
+        -------
+        (x, {label: flat indices sorted by x})
+            One curve per combination of the other PATHs' values; the label names them
+            (``""`` when ``x`` is the only PATH).
+
+        Examples
+        --------
+        >>> from powergraph.model import load_model
+        >>> from powergraph.analyses.sweep import sweep
+        >>> r = sweep(load_model("models/rv40e.yaml"), {"links.0.efficiency": [[0.9], [1.0]],
+        ...                                            "links.1.efficiency": [0.99, 1.0]})
+        >>> path, curves = r.curves()
+        >>> path, sorted(curves)
+        ('links.0.efficiency', ['links.1.efficiency = 0.99', 'links.1.efficiency = 1'])
+        """
+        x = self.paths[0] if x is None else x
+        if x not in self.parameters:
+            from powergraph.errors import UsageError
+
+            raise UsageError(f"{x!r} is not a swept PATH ({', '.join(self.paths)})")
+        others = [p for p in self.paths if p != x]
+        xs = np.ravel(self.parameters[x])
+        if not others:
+            return x, {"": np.argsort(xs, kind="stable")}
+        keys = np.stack([np.ravel(self.parameters[p]) for p in others], axis=1)
+        unique, inverse = np.unique(keys, axis=0, return_inverse=True)
+        curves = {}
+        for g, values in enumerate(unique):
+            members = np.flatnonzero(np.ravel(inverse) == g)
+            label = ", ".join(f"{p} = {v:g}" for p, v in zip(others, values))
+            curves[label] = members[np.argsort(xs[members], kind="stable")]
+        return x, curves
+
+    def columns(self, extra: bool = False) -> dict[str, np.ndarray]:
+        """Flat columns: each PATH, then ratio and efficiency (and more with ``extra``)."""
+        out = {path: np.ravel(values) for path, values in self.parameters.items()}
+        names = CSV_COLUMNS + (EXTRA_COLUMNS if extra else ())
+        for name in names:
+            out[name] = np.ravel(getattr(self, name))
+        if extra:
+            for link, loss in self.losses.items():
+                out[f"loss_link_{link}"] = np.ravel(loss)
+        return out
+
+    def to_csv(self, path: Any = None, extra: bool = False) -> str | None:
+        """Write the CSV (PATHs, ``ratio``, ``efficiency``; ``extra`` adds powers, losses
+        and flags) to ``path`` (a file name or an open text file); return it when None.
+
+        NaN is written as ``nan``; ``status`` as its name.
+        """
+        columns = self.columns(extra)
+        if path is None:
+            buffer = io.StringIO()
+            _write_csv(buffer, columns)
+            return buffer.getvalue()
+        if hasattr(path, "write"):
+            _write_csv(path, columns)
+            return None
+        with open(path, "w", newline="", encoding="utf-8") as handle:
+            _write_csv(handle, columns)
+        return None
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain lists (JSON-ready except NaN): parameters, results, flags, losses."""
+        flat = lambda a: np.ravel(a).tolist()  # noqa: E731
+        return {"name": self.name, "backend": self.backend, "shape": list(self.shape),
+                "parameters": {p: flat(v) for p, v in self.parameters.items()},
+                "ratio": flat(self.ratio), "efficiency": flat(self.efficiency),
+                "input_power": flat(self.input_power), "output_power": flat(self.output_power),
+                "total_loss": flat(self.total_loss),
+                "losses": {str(k): flat(v) for k, v in self.losses.items()},
+                "drivers": {str(k): flat(v) for k, v in self.drivers.items()},
+                "self_locking": flat(self.self_locking), "converged": flat(self.converged),
+                "status": [STATUS[s] for s in np.ravel(self.status)],
+                "passes": flat(self.passes)}
+
+
+#: Rows formatted at once when writing CSV (bounds the memory of the text).
+CSV_BLOCK = 1 << 16
+
+
+def _write_csv(handle, columns: Mapping[str, np.ndarray]) -> None:
+    """Header, then the rows, formatted and written block by block."""
+    names = list(columns)
+    handle.write(",".join(_quoted(name) for name in names) + "\n")
+    size = len(next(iter(columns.values()))) if columns else 0
+    for start in range(0, size, CSV_BLOCK):
+        cells = [_cells(name, columns[name][start:start + CSV_BLOCK]) for name in names]
+        handle.write("\n".join(map(",".join, zip(*cells))) + "\n")
+
+
+def _quoted(name: str) -> str:
+    if any(c in name for c in ',"\n'):
+        return '"' + name.replace('"', '""') + '"'
+    return name
+
+
+def _cells(name: str, values: np.ndarray) -> list[str]:
+    """Text of one column: floats as ``repr`` (round-trip exact, ``nan``), teeth as
+    integers, flags as ``true``/``false``, statuses by name."""
+    if name == "status":
+        return [STATUS[s] for s in values.tolist()]
+    if values.dtype == bool:
+        return ["true" if v else "false" for v in values.tolist()]
+    if name.endswith(".teeth"):
+        return list(map(str, values.astype(np.int64).tolist()))
+    return list(map(repr, values.astype(float).tolist()))

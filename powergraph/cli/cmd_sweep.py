@@ -1,0 +1,97 @@
+"""``powergraph sweep MODEL --set PATH=START:STOP:N ... [-o FILE.csv] [--plot FILE]``.
+
+Compiles the model once and evaluates every point of the Cartesian grid of the ``--set``
+values (issue 9). CSV columns: each PATH (first varies slowest), then ``ratio`` and
+``efficiency`` (``--all-columns`` adds input/output power, total loss, self-locking,
+converged, status and each element's loss). Without ``-o`` the CSV goes to stdout.
+"""
+from __future__ import annotations
+
+import argparse
+import io
+import sys
+
+from powergraph.cli.common import check_figure_path, efficiency_arg, load, write_atomically
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``sweep`` command."""
+    parser = subparsers.add_parser(
+        "sweep", help="compiled, vectorised design sweep over model values",
+        description="Evaluate the train over a grid of model values (tooth numbers, mesh "
+                    "efficiencies, ratios, port speeds/powers) by the virtual-power "
+                    "method, compiled once. PATHs: components.<id>.teeth, "
+                    "links.<i>.efficiency, links.*.efficiency (every mesh), "
+                    "links.<i>.ratio, ports.<i>.speed|power|torque.")
+    parser.add_argument("model", help="model file (YAML)")
+    parser.add_argument("--set", dest="sets", action="append", required=True,
+                        metavar="PATH=START:STOP:N",
+                        help="values of one model value: N points from START to STOP "
+                             "(or a list V1,V2,...); several --set make a Cartesian grid")
+    parser.add_argument("-o", "--output", metavar="FILE.csv",
+                        help="write the CSV here (atomically) instead of stdout")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="plot efficiency and ratio against the first PATH, one curve "
+                             "per value of the others (.png/.svg/.pdf)")
+    parser.add_argument("--all-columns", action="store_true",
+                        help="add powers, losses and flags to the CSV")
+    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+                        help="set every mesh's basic efficiency first")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``sweep``; returns the exit status (errors propagate to main: exit 2)."""
+    from powergraph.analyses.sweep import cartesian, compile_sweep, parse_sets
+
+    figure = check_figure_path(args.plot, "--plot") if args.plot else None
+    model = load(args.model, args.mesh_efficiency)
+    grid = cartesian(parse_sets(model, args.sets))
+    result = compile_sweep(model, list(grid))(grid, quiet=args.quiet)
+    if args.output:
+        write_atomically(args.output, lambda tmp: result.to_csv(tmp, extra=args.all_columns))
+    else:
+        buffer = io.StringIO()
+        result.to_csv(buffer, extra=args.all_columns)
+        sys.stdout.write(buffer.getvalue())
+    if figure is not None:
+        _plot(figure, result)
+    note = sys.stdout if args.output else sys.stderr
+    print(summary(result, args.output, figure), file=note)
+    return 0
+
+
+def summary(result, output: str | None, figure) -> str:
+    """One line: variants, self-locking and unsolved counts, files written."""
+    counts = result.status_counts()
+    unsolved = {k: v for k, v in counts.items() if k != "ok"}
+    text = (f"{result.name}: {result.size:,} variants, "
+            f"{int(result.self_locking.sum()):,} self-locking")
+    if unsolved:
+        text += ", not solved: " + ", ".join(f"{v:,} {k}" for k, v in unsolved.items())
+    if output:
+        text += f"; wrote {output}"
+    if figure is not None:
+        text += f"; wrote {figure}"
+    return text
+
+
+def _plot(target, result) -> None:
+    import matplotlib.pyplot as plt
+
+    from powergraph.plot.sweep import curve_plot
+
+    x_path, curves = result.curves()
+    x = result.parameters[x_path].ravel()
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 7.0), sharex=True)
+    curve_plot({label: (x[i], 100 * result.efficiency.ravel()[i])
+                for label, i in curves.items()}, "", "efficiency [%]", ax=top,
+               title=f"{result.name}: sweep by the virtual-power method",
+               zero_line="self-locking below 0")
+    curve_plot({label: (x[i], result.ratio.ravel()[i]) for label, i in curves.items()},
+               x_path, "ratio (input / output speed)", ax=bottom)
+    try:
+        write_atomically(target, lambda tmp: fig.savefig(tmp, dpi=150, bbox_inches="tight"))
+    finally:
+        plt.close(fig)
