@@ -2,8 +2,10 @@
 
 Each function returns a :class:`FigureData` (curves as read-only arrays, axis labels and a
 caption that says what each curve is); :mod:`powergraph.plot.wang2021` draws it and
-``scripts/wang2021_figures.py`` writes the PNG/SVG files. Every point is a solve of a copy
-of the model (teeth or efficiencies changed), so the paper's β and α come from the speeds.
+``scripts/wang2021_figures.py`` writes the PNG/SVG files. The paper's curve evaluates its
+equations on a copy of the model per point (β and α come from the speeds); each
+virtual-power curve is one call of the compiled sweep (:mod:`powergraph.analyses.sweep`)
+over the same grid.
 
 - Fig. 12: η against the single-pair mesh efficiency (0.90–1.00);
 - Fig. 12b: the equivalent cycloid-mesh efficiency against the same;
@@ -32,6 +34,7 @@ from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
 
+from powergraph.errors import SolveError
 from powergraph.model.spec import Model
 
 NEEDLE_EFFICIENCY = 0.998   # needle-roller pin mesh (DESIGN §3)
@@ -124,32 +127,38 @@ def _paper(model: Model) -> float:
     return paper_equations(model).efficiency
 
 
-def _rigorous(model: Model) -> float:
-    from powergraph.statics import solve
-
-    return solve(model).efficiency
-
-
 def _roles(model: Model):
     from powergraph.methods.rv_roles import find_rv_roles
 
     return find_rv_roles(model)
 
 
-def _needle(model: Model, cycloid_mesh: int, efficiency: float) -> Model:
-    return model.with_link(cycloid_mesh, efficiency=efficiency)
+def _virtual_power(model: Model, values: Mapping[str, Any]) -> Any:
+    """The virtual-power method over a grid, by the compiled sweep (one call per curve)."""
+    from powergraph.analyses.sweep import sweep
+
+    result = sweep(model, values, quiet=True)
+    if not np.all(result.converged):
+        raise SolveError(f"the power directions did not settle for some points of {values}")
+    return result
 
 
-def _three_curves(variants: list[Model], x: np.ndarray, cycloid_mesh: int,
-                  needle: float, paper_label: str, both_label: str) -> tuple[Curve, ...]:
-    """The paper's η, the virtual-power η, and the virtual-power η with a needle mesh."""
+def _three_curves(model: Model, variants: list[Model], values: Mapping[str, Any],
+                  x: np.ndarray | None, needle: float, paper_label: str,
+                  both_label: str) -> tuple[Curve, ...]:
+    """The paper's η (its closed equations, per variant), the virtual-power η and the
+    virtual-power η with a needle mesh (compiled sweeps over ``values``). ``x=None``
+    plots against the ratio."""
+    roles = _roles(model)
     paper = _frozen(_paper(m) for m in variants)
-    rigorous = _frozen(_rigorous(m) for m in variants)
-    with_needle = _frozen(_rigorous(_needle(m, cycloid_mesh, needle)) for m in variants)
+    rigorous = _virtual_power(model, values)
+    needle_values = {**values, f"links.{roles.cycloid_mesh}.efficiency": needle}
+    with_needle = _virtual_power(model, needle_values)
+    x = _frozen(rigorous.ratio) if x is None else x
     return (Curve("wang2021", paper_label, "wang2021", x, paper),
-            Curve("virtual-power", both_label, "virtual-power", x, rigorous),
+            Curve("virtual-power", both_label, "virtual-power", x, _frozen(rigorous.efficiency)),
             Curve("virtual-power-needle", f"virtual-power method, cycloid-pin mesh {needle}",
-                  "virtual-power", x, with_needle))
+                  "virtual-power", x, _frozen(with_needle.efficiency)))
 
 
 def mesh_efficiency_curves(model: Model, efficiencies: Iterable[float] | None = None,
@@ -181,7 +190,9 @@ def mesh_efficiency_curves(model: Model, efficiencies: Iterable[float] | None = 
     x = _frozen(np.linspace(0.90, 1.00, 21) if efficiencies is None else efficiencies)
     roles = _roles(model)
     variants = [model.with_mesh_efficiency(float(e)) for e in x]
-    curves = _three_curves(variants, x, roles.cycloid_mesh, needle,
+    values = {f"links.{roles.first_mesh}.efficiency": x,
+              f"links.{roles.cycloid_mesh}.efficiency": x}
+    curves = _three_curves(model, variants, values, x, needle,
                            "Wang (2021), Eqs. 13-15, both meshes at x",
                            "virtual-power method, both meshes at x")
     caption = (f"Efficiency of {model.name} against the single-pair mesh efficiency x. "
@@ -226,14 +237,12 @@ def equivalent_efficiency_curve(model: Model,
                       _marks_at((curve,), first, ".6f"))
 
 
-def _ratio_curves(model: Model, variants: list[Model], needle: float) -> tuple[Curve, ...]:
-    from powergraph.kinematics import solve_speeds
-
+def _ratio_curves(model: Model, variants: list[Model], values: Mapping[str, Any],
+                  needle: float) -> tuple[Curve, ...]:
     roles = _roles(model)
-    x = _frozen(solve_speeds(m).ratio for m in variants)
     eta1 = model.links[roles.first_mesh].efficiency
     eta2 = model.links[roles.cycloid_mesh].efficiency
-    return _three_curves(variants, x, roles.cycloid_mesh, needle,
+    return _three_curves(model, variants, values, None, needle,
                          f"Wang (2021), Eqs. 13-15 (eta1 = {eta1}, eta2 = {eta2})",
                          f"virtual-power method (eta1 = {eta1}, eta2 = {eta2})")
 
@@ -269,7 +278,9 @@ def cycloid_ratio_curves(model: Model, z5_values: Iterable[int] | None = None,
     roles = _roles(model)
     z5s = list(range(20, 61) if z5_values is None else z5_values)
     variants = [with_teeth(model, {roles.pin_gear: z5, roles.cycloid: z5 - 1}) for z5 in z5s]
-    curves = _ratio_curves(model, variants, needle)
+    values = {f"components.{roles.pin_gear}.teeth": np.array(z5s),
+              f"components.{roles.cycloid}.teeth": np.array(z5s) - 1}
+    curves = _ratio_curves(model, variants, values, needle)
     paper = curves[0]
     marks = tuple(Mark("wang2021", float(paper.x[z5s.index(z4 + 1)]),
                        float(paper.y[z5s.index(z4 + 1)]),
@@ -301,7 +312,8 @@ def first_stage_ratio_curves(model: Model, z2_values: Iterable[int] | None = Non
     roles = _roles(model)
     z2s = list(range(12, 61, 2) if z2_values is None else z2_values)
     variants = [with_teeth(model, {roles.planet_gear: z2}) for z2 in z2s]
-    curves = _ratio_curves(model, variants, needle)
+    values = {f"components.{roles.planet_gear}.teeth": np.array(z2s)}
+    curves = _ratio_curves(model, variants, values, needle)
     z1 = model.components[roles.input_gear].teeth
     caption = (f"Efficiency of {model.name} against its ratio 1 + z2 z5/z1, varying the "
                f"planet gear z2 (z1 = {z1}, so z2/z1 from {z2s[0] / z1:.3g} to "
