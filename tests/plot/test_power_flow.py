@@ -28,30 +28,8 @@ MODEL_FILES = sorted((ROOT / "models").glob("*.yaml"))
 
 UNSEEN = {
     # closed differential: the ring is driven back from the carrier -> circulating power
-    "closed differential": """
-name: Closed differential
-components:
-  0: {role: frame}
-  s: {teeth: 20}
-  p: {teeth: 20, count: 3}
-  r: {teeth: 60, internal: true}
-  re: {teeth: 60}
-  c: {}
-  a: {teeth: 40}
-  b: {teeth: 20}
-  b2: {teeth: 20}
-links:
-  - {type: mesh, between: [s, p], carrier: c, efficiency: 0.98}
-  - {type: mesh, between: [p, r], carrier: c, efficiency: 0.99}
-  - {type: fixed, between: [r, re]}
-  - {type: fixed, between: [c, a]}
-  - {type: mesh, between: [a, b], efficiency: 0.98}
-  - {type: fixed, between: [b, b2]}
-  - {type: mesh, between: [b2, re], efficiency: 0.98}
-ports:
-  - {component: s, role: input, speed: 1000 rpm, power: 1 kW}
-  - {component: c, role: output}
-""",
+    "closed differential": (ROOT / "tests" / "data"
+                            / "closed_differential_carrier_loop.yaml").read_text(),
     # 3K (Wolfrom): stepped planet, one ring fixed, the other the output, free carrier
     "3K Wolfrom": """
 name: 3K Wolfrom
