@@ -164,7 +164,7 @@ def _solve_reduced(model: Model, rows: np.ndarray, rhs: np.ndarray,
     reduced_rhs = rhs - rows[:, list(known)] @ np.array(list(known.values()))
     reduced = rows[:, unknown]
     if unknown:
-        solution[unknown] = np.linalg.lstsq(reduced, reduced_rhs, rcond=None)[0]
+        solution[unknown] = _least_squares(reduced, reduced_rhs)
     residual = rows @ solution - rhs
     scale = max(1.0, float(np.max(np.abs(solution))))
     if residual.size and np.max(np.abs(residual)) > 1e-9 * scale:
@@ -173,9 +173,18 @@ def _solve_reduced(model: Model, rows: np.ndarray, rhs: np.ndarray,
                               + " cannot all hold")
     if unknown and _rank(reduced) < len(unknown):
         raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
-    if unknown and reduced.shape[0] == reduced.shape[1]:
-        solution[unknown] = np.linalg.solve(reduced, reduced_rhs)  # exact where square
     return solution
+
+
+def _least_squares(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Exact solve where the system is square and regular (the usual case), else lstsq;
+    the caller checks the residual and the rank either way."""
+    if matrix.shape[0] == matrix.shape[1]:
+        try:
+            return np.linalg.solve(matrix, rhs)
+        except np.linalg.LinAlgError:
+            pass
+    return np.linalg.lstsq(matrix, rhs, rcond=None)[0]
 
 
 def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) -> dict:
