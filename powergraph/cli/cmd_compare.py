@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 
 from powergraph.cli.common import (
+    aligned_table,
     check_figure_path,
     efficiency_arg,
     load,
@@ -60,11 +61,7 @@ def table(rows) -> str:
     cells = [[header for _, header, _ in columns]]
     for row in rows:
         cells.append([_cell(getattr(row, key), fmt) for key, _, fmt in columns])
-    widths = [max(len(line[i]) for line in cells) for i in range(len(columns))]
-    lines = ["  ".join(text.ljust(w) if i == 0 else text.rjust(w)
-                       for i, (text, w) in enumerate(zip(line, widths))) for line in cells]
-    lines.insert(1, "  ".join("-" * w for w in widths))
-    return "\n".join(lines)
+    return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
 
 
 def _cell(value, fmt: str) -> str:

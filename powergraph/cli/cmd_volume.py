@@ -10,7 +10,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from powergraph.cli.common import check_figure_path, load, print_json, write_atomically
+from powergraph.cli.common import (
+    aligned_table,
+    check_figure_path,
+    load,
+    print_json,
+    write_atomically,
+)
 
 #: Tooth numbers of the pitch-circle error plot.
 PLOT_TEETH = range(12, 81)
@@ -61,15 +67,8 @@ def format_table(result) -> str:
                      "" if part.profile_error is None else f"{100 * part.profile_error:+.3f} %"))
     rows.append(("", "total (Eq. 8)", "", "", "", "", f"{result.total_mm3:,.1f}",
                  f"{result.total_exact_profile_mm3:,.1f}", ""))
-    widths = [max(len(row[i]) for row in rows) for i in range(len(header))]
-    numeric = {4, 5, 6, 7, 8}
     lines = [f"{result.name}: volume by Pan & Wang (2019), lengths in mm"]
-    for index, row in enumerate(rows):
-        cells = [cell.rjust(w) if i in numeric else cell.ljust(w)
-                 for i, (cell, w) in enumerate(zip(row, widths))]
-        lines.append("  ".join(cells).rstrip())
-        if index == 0 or index == len(rows) - 2:
-            lines.append("  ".join("-" * w for w in widths))
+    lines += aligned_table(rows, {4, 5, 6, 7, 8}, rules_after=(0, len(rows) - 2))
     lines.append(f"total: {result.total_mm3:,.1f} mm³ = {result.total_litres:.4f} L")
     if any(part.exact_mm3 is not None for part in result.components.values()):
         lines.append("exact outline: gears and cycloid discs with their generated profile "

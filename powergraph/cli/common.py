@@ -48,6 +48,24 @@ def load(path: str, mesh_efficiency: float | None = None):
     return model.with_mesh_efficiency(mesh_efficiency) if mesh_efficiency is not None else model
 
 
+def aligned_table(rows: list[list[str]], numeric: set[int],
+                  rules_after: tuple[int, ...] = (0,)) -> list[str]:
+    """Text rows padded to common column widths: ``numeric`` columns right-aligned, the
+    others left-aligned, a dashed rule after each row index in ``rules_after``.
+
+    >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
+    ['a   n', '--  -', 'bb  1']
+    """
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    lines = []
+    for index, row in enumerate(rows):
+        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
+                               for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
+        if index in rules_after:
+            lines.append("  ".join("-" * w for w in widths))
+    return lines
+
+
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
 
