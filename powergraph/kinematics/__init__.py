@@ -1,7 +1,7 @@
 """Kinematics layer: bodies' speeds from Willis' relations (DESIGN §2)."""
 from __future__ import annotations
 
-from powergraph.kinematics.elements import Element, elements_of, willis_ratio
+from powergraph.kinematics.elements import Element, element_stencil, elements_of, willis_ratio
 from powergraph.kinematics.variants import backdriven
 from powergraph.kinematics.speeds import (
     Kinematics,
@@ -11,4 +11,4 @@ from powergraph.kinematics.speeds import (
 )
 
 __all__ = ["Element", "Kinematics", "backdriven", "constraint_matrix", "degrees_of_freedom",
-           "elements_of", "solve_speeds", "willis_ratio"]
+           "element_stencil", "elements_of", "solve_speeds", "willis_ratio"]

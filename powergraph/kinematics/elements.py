@@ -7,8 +7,12 @@ mesh's (the loss torque reacts on the frame).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TypeVar
 
 from powergraph.model.spec import Link, Model
+
+#: A number, a numpy array or a sympy expression: the stencil is the same for all three.
+Value = TypeVar("Value")
 
 
 @dataclass(frozen=True)
@@ -33,6 +37,41 @@ class Element:
     @property
     def bodies(self) -> tuple[str, str, str]:
         return self.body_a, self.body_b, self.body_c
+
+
+def element_stencil(ratio: Value, factor: Value | float = 1.0) -> tuple[float, Value, Value]:
+    """The one place where an element's physics is written: its coefficients on gear a,
+    gear b and the carrier.
+
+    With ``factor = 1`` they are the element's **kinematic row** (Willis' relation
+    ``(w_a - w_c) - i (w_b - w_c) = 0`` written as ``1·w_a - i·w_b + (i - 1)·w_c = 0``).
+    With the element's factor ``f`` (``η`` when gear a drives in the carrier's frame,
+    ``1/η`` when gear b drives, 1 when ideal) they are its **static column**: the torques it
+    applies to gear a, gear b and the carrier per unit of its force ``λ``. The static column
+    is the kinematic row with ``i`` replaced by ``i·f`` (the principle of virtual power: an
+    ideal element's torques do no work in any frame). ``ratio`` and ``factor`` may be
+    floats, numpy arrays (one value per variant) or sympy expressions.
+
+    Parameters
+    ----------
+    ratio : float, array or sympy expression
+        Willis' quotient ``i = (w_a - w_c)/(w_b - w_c)``.
+    factor : float, array or sympy expression, optional
+        The element's efficiency factor ``f`` (default 1: the kinematic row).
+
+    Returns
+    -------
+    (coefficient of gear a, of gear b, of the carrier)
+
+    Examples
+    --------
+    >>> element_stencil(-2.5)
+    (1.0, 2.5, -3.5)
+    >>> element_stencil(-2.5, 0.98)
+    (1.0, 2.45, -3.45)
+    """
+    scaled = ratio * factor
+    return 1.0, -scaled, scaled - 1.0
 
 
 def willis_ratio(link: Link, model: Model) -> float:
