@@ -4,7 +4,7 @@
 (mesh 4–5) drawn at random (z1 in 10…20, z2 = round(z1·U(2, 4)), z4 in 25…60,
 η in U(0.90, 1.0); input 1500 rpm, 2.27 kW) are evaluated by
 
-(a) ``powergraph.sweep`` — the model compiled once (:func:`compile_sweep`);
+(a) ``powergraph.analyses.sweep`` — the model compiled once (:func:`compile_sweep`);
 (b) :func:`closed_form` below — the same virtual-power physics, derived by hand;
 (c) a Python loop of single solves (``powergraph.solve``) on ``--loop`` of them,
     extrapolated (each variant model is made by ``dataclasses.replace``, no validation,
@@ -144,7 +144,7 @@ def peak_megabytes(run) -> float:
 
 def measure(n: int, n_loop: int, repeat: int, seed: int) -> dict:
     from powergraph.model import load_model
-    from powergraph.sweep import compile_sweep
+    from powergraph.analyses.sweep import compile_sweep
 
     model = load_model(MODEL)
     values = variants(n, seed)

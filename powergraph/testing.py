@@ -48,7 +48,7 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
     """In the flow graph seen from ``frame``, every body and element node balances, and
     motor + ground = generator + loss."""
     graph = result.flow_graph(frame)
-    scale = _scale(result) + sum(abs(e.virtual_power) for e in result.elements)
+    scale = _scale(result) + sum(abs(e.carrier_frame_power) for e in result.elements)
     sources = (MOTOR, GENERATOR, LOSS, GROUND)
     for node in graph.nodes:
         if node.split(" ")[0] in sources:
@@ -93,7 +93,7 @@ def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
     """In its carrier's frame each element passes power from its driver to the other gear
     with its basic efficiency: out = η · in, in >= 0 (Chen & Angeles' virtual power)."""
     kin, model = result.kinematics, result.model
-    scale = _scale(result) + sum(e.virtual_power for e in result.elements)
+    scale = _scale(result) + sum(e.carrier_frame_power for e in result.elements)
     for e in result.elements:
         body_a, body_b = model.body_of[e.a], model.body_of[e.b]
         w_c = kin.speed(e.carrier)
@@ -108,7 +108,7 @@ def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
             raise AssertionError(f"links[{e.link}]: the driver {e.driver!r} takes power out")
         _close(fed_out, e.efficiency * fed_in, scale, rtol,
                f"links[{e.link}] carrier-frame output vs efficiency x input")
-        _close(e.virtual_power, fed_in, scale, rtol, f"links[{e.link}] virtual power")
+        _close(e.carrier_frame_power, fed_in, scale, rtol, f"links[{e.link}] virtual power")
 
 
 def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:

@@ -10,16 +10,27 @@ Examples
 >>> rows = compare_models([load_model("models/rv40e.yaml")], mesh_efficiency=0.99)  # doctest: +SKIP
 >>> rows[0].ratio                                                                   # doctest: +SKIP
 121.0
+>>> print(rows.text_report())                                                       # doctest: +SKIP
 """
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
-from typing import Iterable
+from typing import Any, Iterable, Iterator
 
 from powergraph.errors import PowerGraphError
 from powergraph.kinematics import backdriven
 from powergraph.model.spec import Model
+from powergraph.result import aligned_table
 from powergraph.statics import solve
+
+#: Text-table columns: (row attribute, header, format).
+COLUMNS = (("name", "train", "{}"), ("ratio", "ratio", "{:.4g}"),
+           ("efficiency", "eff %", "{:.2%}"), ("backdrive_efficiency", "back %", "{:.2%}"),
+           ("backdrive_self_locking", "locks back", "{}"),
+           ("circulating_power", "circ. W", "{:.4g}"),
+           ("max_virtual_power_ratio", "max Pv/P", "{:.3g}"), ("meshes", "meshes", "{}"),
+           ("volume_mm3", "volume mm³", "{:.4g}"),
+           ("power_density_kw_per_l", "kW/L", "{:.3g}"))
 
 
 @dataclass(frozen=True)
@@ -48,11 +59,56 @@ class ComparisonRow:
     backdrive_note: str | None = None
 
     def to_dict(self) -> dict:
+        """Every field; ``max_virtual_power_ratio`` is the largest power a mesh passes in
+        its carrier's frame over the input power."""
         return asdict(self)
 
 
+@dataclass(frozen=True)
+class ComparisonTable:
+    """Rows of several trains; a sequence of :class:`ComparisonRow` (``table[0]``,
+    ``for row in table``) that follows :class:`powergraph.result.Result`."""
+
+    rows: tuple[ComparisonRow, ...]
+
+    def __iter__(self) -> Iterator[ComparisonRow]:
+        return iter(self.rows)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __getitem__(self, index: int) -> ComparisonRow:
+        return self.rows[index]
+
+    def to_dict(self) -> dict[str, Any]:
+        """``{"rows": [row.to_dict(), ...]}`` (``compare --json`` prints the list)."""
+        return {"rows": [row.to_dict() for row in self.rows]}
+
+    def text_report(self) -> str:
+        """Aligned text table, one row per train; columns with no data are left out."""
+        columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in self.rows)]
+        cells = [[header for _, header, _ in columns]]
+        for row in self.rows:
+            cells.append([_cell(getattr(row, key), fmt) for key, _, fmt in columns])
+        return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Grouped bars (delegates, lazily, to :func:`powergraph.plot.compare.plot_comparison`)."""
+        from powergraph.plot.compare import plot_comparison
+
+        return plot_comparison(self.rows, ax=ax, **kwargs)
+
+
+def _cell(value: Any, fmt: str) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    return fmt.format(value)
+
+
 def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None
-                   ) -> list[ComparisonRow]:
+                   ) -> ComparisonTable:
     """One :class:`ComparisonRow` per model, optionally all meshes at ``mesh_efficiency``.
 
     Parameters
@@ -60,20 +116,25 @@ def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None
     models : iterable of Model
     mesh_efficiency : float, optional
         Compare at equal mesh quality: every mesh's basic efficiency set to this.
+
+    Returns
+    -------
+    ComparisonTable
+        Indexable and iterable like a list of rows.
     """
     rows = []
     for model in models:
         if mesh_efficiency is not None:
             model = model.with_mesh_efficiency(mesh_efficiency)
         rows.append(compare_row(model))
-    return rows
+    return ComparisonTable(tuple(rows))
 
 
 def compare_row(model: Model) -> ComparisonRow:
     """The figures of merit of one model (see :class:`ComparisonRow`)."""
     forward = solve(model)
     back_eff, back_lock, note = _backdrive(model)
-    largest = max((e.virtual_power for e in forward.meshes), default=0.0)
+    largest = max((e.carrier_frame_power for e in forward.meshes), default=0.0)
     volume, density = _volume(model, forward.output_power)
     return ComparisonRow(
         name=model.name, source=model.source, dof=forward.dof, ratio=forward.ratio,

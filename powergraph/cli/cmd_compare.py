@@ -4,21 +4,13 @@ from __future__ import annotations
 import argparse
 
 from powergraph.cli.common import (
-    aligned_table,
     check_figure_path,
     efficiency_arg,
     load,
+    new_axes,
     print_json,
-    write_atomically,
+    save_figure,
 )
-
-COLUMNS = (("name", "train", "{}"), ("ratio", "ratio", "{:.4g}"),
-           ("efficiency", "eff %", "{:.2%}"), ("backdrive_efficiency", "back %", "{:.2%}"),
-           ("backdrive_self_locking", "locks back", "{}"),
-           ("circulating_power", "circ. W", "{:.4g}"),
-           ("max_virtual_power_ratio", "max Pv/P", "{:.3g}"), ("meshes", "meshes", "{}"),
-           ("volume_mm3", "volume mm³", "{:.4g}"),
-           ("power_density_kw_per_l", "kW/L", "{:.3g}"))
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -36,37 +28,16 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from powergraph.analyses.compare import compare_row
+    from powergraph.analyses.compare import ComparisonTable, compare_row
 
     target = check_figure_path(args.output) if args.output else None
-    rows = [compare_row(load(path, args.mesh_efficiency)) for path in args.models]
+    table = ComparisonTable(tuple(compare_row(load(path, args.mesh_efficiency))
+                                  for path in args.models))
     if args.json:
-        print_json([row.to_dict() for row in rows])
+        print_json(table.to_dict()["rows"])
     else:
-        print(table(rows))
+        print(table.text_report())
     if target is not None:
-        from powergraph.plot.compare import plot_comparison
-
-        def write(tmp: str) -> None:
-            ax = plot_comparison(rows)
-            ax.figure.savefig(tmp, bbox_inches="tight")
-
-        write_atomically(target, write)
+        ax = table.plot(ax=new_axes(figsize=(max(6.0, 1.6 * len(table) + 2), 4.2)))
+        save_figure(ax.figure, target, bbox_inches="tight")
     return 0
-
-
-def table(rows) -> str:
-    """Aligned text table, one row per train; columns with no data anywhere are left out."""
-    columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in rows)]
-    cells = [[header for _, header, _ in columns]]
-    for row in rows:
-        cells.append([_cell(getattr(row, key), fmt) for key, _, fmt in columns])
-    return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
-
-
-def _cell(value, fmt: str) -> str:
-    if value is None:
-        return "-"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    return fmt.format(value)

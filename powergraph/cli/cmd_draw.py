@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, efficiency_arg, load, write_atomically
+from powergraph.cli.common import check_figure_path, efficiency_arg, load, new_figure, save_figure
 from powergraph.errors import PowerGraphError
 
 METHODS = ("virtual-power", "wang2021")
@@ -57,18 +57,15 @@ def run(args: argparse.Namespace) -> int:
         from powergraph.statics import solve
 
         result = solve(model)
-    from powergraph.analyses.flow_view import flow_view
+    from powergraph.plot.layout.view import flow_view
 
     view = flow_view(result, args.frame)     # a bad --frame fails before matplotlib
     from powergraph.plot.power_flow import plot_power_flow
-    import matplotlib.pyplot as plt
 
-    ax = plot_power_flow(result, frame=args.frame, view=view)
+    ax = plot_power_flow(result, frame=args.frame, view=view, figure=new_figure())
     try:
-        write_atomically(target, lambda tmp: ax.figure.savefig(tmp, dpi=args.dpi))
+        save_figure(ax.figure, target, dpi=args.dpi)
     except OSError as exc:
         raise PowerGraphError(f"cannot write {target}: {exc.strerror or exc}") from exc
-    finally:
-        plt.close(ax.figure)
     print(f"wrote {target} ({view.title})")
     return 0

@@ -49,7 +49,7 @@ def run(args: argparse.Namespace) -> int:
     relations = parse_lets(args.let)
     model = load(args.model)
     from powergraph.analyses.formula import derive_formulas
-    from powergraph.analyses.formula.report import latex_report, text_report
+    from powergraph.analyses.formula.report import latex_report
 
     result = derive_formulas(model, relations)
     if args.json:
@@ -57,5 +57,5 @@ def run(args: argparse.Namespace) -> int:
     elif args.latex:
         print(latex_report(result))
     else:
-        print(text_report(result))
+        print(result.text_report())
     return 0

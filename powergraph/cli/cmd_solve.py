@@ -14,7 +14,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                         "torques, per-mesh virtual power and loss, "
                                         "and the efficiency.")
     parser.add_argument("model", help="model file (YAML)")
-    parser.add_argument("--json", action="store_true", help="print the SPEC §3 JSON object")
+    parser.add_argument("--json", action="store_true", help="print the JSON object (docs/format.md)")
     parser.add_argument("--method", choices=METHODS, default="virtual-power",
                         help="virtual-power (default, any train) or wang2021 (the seed "
                              "paper's split/virtual power method, RV-type trains)")
@@ -40,30 +40,17 @@ def run(args: argparse.Namespace) -> int:
             data["cycloid_fluctuation"] = fluctuation.to_dict()
         print_json(data)
     else:
-        from powergraph.statics.report import text_report
-
-        print(result.text_report() if hasattr(result, "text_report") else text_report(result))
+        print(result.text_report())
         if fluctuation is not None:
-            print(_fluctuation_text(fluctuation.to_dict()))
+            print()
+            print(fluctuation.text_report())
     return 0
 
 
 def _cycloid_fluctuation(model):
-    """The output's ratio fluctuation from meshes carrying a ``cycloid`` block (issue 7)."""
+    """The output's ratio fluctuation from meshes carrying a ``cycloid`` block (docs/cycloid.md)."""
     if not any("cycloid" in link.blocks for link in model.meshes):
         return None
     from powergraph.analyses.cycloid import train_fluctuation
 
     return train_fluctuation(model)
-
-
-def _fluctuation_text(data: dict) -> str:
-    lines = ["", "ratio fluctuation from cycloid profile errors (input speed held)"]
-    for stage in data["stages"]:
-        lines.append(
-            f"  mesh {stage['disc']}-{stage['ring']}: profile error "
-            f"{stage['profile_error'] * 1000:g} um -> stage max |di| "
-            f"{stage['stage_max_deviation_percent']:.4f} % (paper's 2-degree method "
-            f"{stage['stage_max_deviation_percent_2deg']:.4f} %), at the output "
-            f"{stage['max_deviation_percent']:.4f} % of the ratio {data['ratio_nominal']:.6g}")
-    return "\n".join(lines)

@@ -1,7 +1,7 @@
 """``powergraph sweep MODEL --set PATH=START:STOP:N ... [-o FILE.csv] [--plot FILE]``.
 
 Compiles the model once and evaluates every point of the Cartesian grid of the ``--set``
-values (issue 9). CSV columns: each PATH (first varies slowest), then ``ratio`` and
+values (docs/sweep.md). CSV columns: each PATH (first varies slowest), then ``ratio`` and
 ``efficiency`` (``--all-columns`` adds input/output power, total loss, self-locking,
 converged, status and each element's loss). Without ``-o`` the CSV goes to stdout.
 """
@@ -11,7 +11,8 @@ import argparse
 import io
 import sys
 
-from powergraph.cli.common import check_figure_path, efficiency_arg, load, write_atomically
+from powergraph.cli.common import (check_figure_path, efficiency_arg, load, new_figure,
+                                   save_figure, write_atomically)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -64,12 +65,7 @@ def run(args: argparse.Namespace) -> int:
 
 def summary(result, output: str | None, figure) -> str:
     """One line: variants, self-locking and unsolved counts, files written."""
-    counts = result.status_counts()
-    unsolved = {k: v for k, v in counts.items() if k != "ok"}
-    text = (f"{result.name}: {result.size:,} variants, "
-            f"{int(result.self_locking.sum()):,} self-locking")
-    if unsolved:
-        text += ", not solved: " + ", ".join(f"{v:,} {k}" for k, v in unsolved.items())
+    text = result.text_report()
     if output:
         text += f"; wrote {output}"
     if figure is not None:
@@ -78,20 +74,14 @@ def summary(result, output: str | None, figure) -> str:
 
 
 def _plot(target, result) -> None:
-    import matplotlib.pyplot as plt
-
+    """Efficiency above, ratio below, against the first swept path."""
     from powergraph.plot.sweep import curve_plot
 
+    fig = new_figure((6.4, 7.0))
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    result.plot(ax=top, xlabel="")
     x_path, curves = result.curves()
     x = result.parameters[x_path].ravel()
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 7.0), sharex=True)
-    curve_plot({label: (x[i], 100 * result.efficiency.ravel()[i])
-                for label, i in curves.items()}, "", "efficiency [%]", ax=top,
-               title=f"{result.name}: sweep by the virtual-power method",
-               zero_line="self-locking below 0")
     curve_plot({label: (x[i], result.ratio.ravel()[i]) for label, i in curves.items()},
                x_path, "ratio (input / output speed)", ax=bottom)
-    try:
-        write_atomically(target, lambda tmp: fig.savefig(tmp, dpi=150, bbox_inches="tight"))
-    finally:
-        plt.close(fig)
+    save_figure(fig, target, dpi=150, bbox_inches="tight")

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from powergraph.errors import UsageError
+from powergraph.result import aligned_table  # noqa: F401  (used by the commands)
 
 
 def print_json(data: Any) -> None:
@@ -48,24 +49,6 @@ def load(path: str, mesh_efficiency: float | None = None):
     return model.with_mesh_efficiency(mesh_efficiency) if mesh_efficiency is not None else model
 
 
-def aligned_table(rows: list[list[str]], numeric: set[int],
-                  rules_after: tuple[int, ...] = (0,)) -> list[str]:
-    """Text rows padded to common column widths: ``numeric`` columns right-aligned, the
-    others left-aligned, a dashed rule after each row index in ``rules_after``.
-
-    >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
-    ['a   n', '--  -', 'bb  1']
-    """
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
-    lines = []
-    for index, row in enumerate(rows):
-        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
-                               for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
-        if index in rules_after:
-            lines.append("  ".join("-" * w for w in widths))
-    return lines
-
-
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
 
@@ -100,3 +83,25 @@ def write_atomically(path: str | Path, write: Callable[[str], None]) -> None:
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+# --- figures: the command line writes files with matplotlib's object-oriented API -------
+def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
+    """A :class:`matplotlib.figure.Figure` not registered with pyplot.
+
+    The command line only writes files, so it needs no interactive backend and chooses
+    none: ``Figure.savefig`` picks the writer from the file's suffix.
+    """
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=figsize)
+
+
+def new_axes(figsize: tuple[float, float] = (6.4, 4.8), projection: str | None = None):
+    """One axes on a :func:`new_figure`."""
+    return new_figure(figsize).add_subplot(projection=projection)
+
+
+def save_figure(figure, target: str | Path, **savefig: Any) -> None:
+    """Write ``figure`` to ``target`` atomically (``savefig`` keywords passed on)."""
+    write_atomically(target, lambda tmp: figure.savefig(tmp, **savefig))

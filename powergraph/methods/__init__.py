@@ -2,7 +2,7 @@
 
 - :mod:`powergraph.methods.wang2021`: Wang (2021)'s split/virtual power efficiency of an
   RV reducer (``powergraph solve MODEL --method wang2021``);
-- :mod:`powergraph.methods.compare`: that method and the virtual-power method side by
+- :mod:`powergraph.methods.method_comparison`: that method and the virtual-power method side by
   side, and the equivalent cycloid-mesh efficiency;
 - :mod:`powergraph.methods.figures`: the data of the paper's Figs. 12–13 by both methods.
 
@@ -18,8 +18,8 @@ __all__ = ["MethodComparison", "PaperEquations", "RVRoles", "Wang2021Result",
            "compare_methods", "equivalent_cycloid_efficiency", "find_rv_roles",
            "paper_equations", "solve_wang2021"]
 
-_HOME = {"MethodComparison": "compare", "compare_methods": "compare",
-         "equivalent_cycloid_efficiency": "compare", "RVRoles": "rv_roles",
+_HOME = {"MethodComparison": "method_comparison", "compare_methods": "method_comparison",
+         "equivalent_cycloid_efficiency": "method_comparison", "RVRoles": "rv_roles",
          "find_rv_roles": "rv_roles", "PaperEquations": "wang2021_equations",
          "Wang2021Result": "wang2021", "paper_equations": "wang2021",
          "solve_wang2021": "wang2021"}

@@ -15,7 +15,7 @@ over the same grid.
 By the paper's equations ``η = η1 − (η1 + 1/β)(1 − η2)`` with ``β = z4/(z5 − z4)``: η
 *rises* slightly with z4 (0.88153 at z4 = 29, 0.88206 at 39, 0.88238 at 49) and does not
 depend on z2/z1, while the paper's text says η falls as the ratio grows. The
-virtual-power η does fall. REFERENCE §A asks to plot what the equations give: we do.
+virtual-power η does fall. We plot what the equations give (tests/data/reference_values.md).
 
 Examples
 --------
@@ -37,7 +37,7 @@ import numpy as np
 from powergraph.errors import SolveError
 from powergraph.model.spec import Model
 
-NEEDLE_EFFICIENCY = 0.998   # needle-roller pin mesh (DESIGN §3)
+NEEDLE_EFFICIENCY = 0.998   # needle-roller pin mesh (docs/theory.md)
 
 
 def _frozen(values: Iterable[float]) -> np.ndarray:
@@ -63,7 +63,7 @@ class Curve:
 
 @dataclass(frozen=True)
 class Mark:
-    """An annotated point (e.g. a REFERENCE value on a curve)."""
+    """An annotated point (e.g. a published reference value on a curve)."""
 
     curve: str
     x: float
@@ -73,7 +73,10 @@ class Mark:
 
 @dataclass(frozen=True)
 class FigureData:
-    """Everything a figure shows; the plot functions compute nothing."""
+    """Everything a figure shows; the plot functions compute nothing.
+
+    Follows the result protocol :class:`powergraph.result.Result`.
+    """
 
     key: str
     title: str
@@ -87,7 +90,23 @@ class FigureData:
         """The curve called ``key``."""
         return next(c for c in self.curves if c.key == key)
 
+    def text_report(self) -> str:
+        """Title, axes, caption and every curve's points, one per line."""
+        lines = [self.title, f"x: {self.xlabel}; y: {self.ylabel}", self.caption, ""]
+        for curve in self.curves:
+            lines.append(f"{curve.label} ({curve.method})")
+            lines += [f"  {x:>10.6g}  {y:>10.6g}" for x, y in zip(curve.x, curve.y)]
+        return "\n".join(lines)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Draw every curve (delegates, lazily, to :func:`powergraph.plot.wang2021.plot_figure`)."""
+        from powergraph.plot.wang2021 import plot_figure
+
+        return plot_figure(self, ax=ax, **kwargs)
+
     def to_dict(self) -> dict[str, Any]:
+        """``{key, title, xlabel, ylabel, caption, curves: [{key, label, method, x, y}],
+        marks}``; a curve's ``method`` is "wang2021" or "virtual-power"."""
         return {"key": self.key, "title": self.title, "xlabel": self.xlabel,
                 "ylabel": self.ylabel, "caption": self.caption,
                 "curves": [c.to_dict() for c in self.curves],
@@ -133,7 +152,7 @@ def _roles(model: Model):
     return find_rv_roles(model)
 
 
-def _virtual_power(model: Model, values: Mapping[str, Any]) -> Any:
+def _by_virtual_power_method(model: Model, values: Mapping[str, Any]) -> Any:
     """The virtual-power method over a grid, by the compiled sweep (one call per curve)."""
     from powergraph.analyses.sweep import sweep
 
@@ -151,9 +170,9 @@ def _three_curves(model: Model, variants: list[Model], values: Mapping[str, Any]
     plots against the ratio."""
     roles = _roles(model)
     paper = _frozen(_paper(m) for m in variants)
-    rigorous = _virtual_power(model, values)
+    rigorous = _by_virtual_power_method(model, values)
     needle_values = {**values, f"links.{roles.cycloid_mesh}.efficiency": needle}
-    with_needle = _virtual_power(model, needle_values)
+    with_needle = _by_virtual_power_method(model, needle_values)
     x = _frozen(rigorous.ratio) if x is None else x
     return (Curve("wang2021", paper_label, "wang2021", x, paper),
             Curve("virtual-power", both_label, "virtual-power", x, _frozen(rigorous.efficiency)),
@@ -219,7 +238,7 @@ def equivalent_efficiency_curve(model: Model,
     >>> round(float(fig.curves[0].y[0]), 6)                             # doctest: +SKIP
     0.998285
     """
-    from powergraph.methods.compare import equivalent_cycloid_efficiency
+    from powergraph.methods.method_comparison import equivalent_cycloid_efficiency
 
     x = _frozen(np.linspace(0.90, 1.00, 21) if efficiencies is None else efficiencies)
     variants = [model.with_mesh_efficiency(float(e)) for e in x]
@@ -261,7 +280,7 @@ def cycloid_ratio_curves(model: Model, z5_values: Iterable[int] | None = None,
     needle : float
         Cycloid–pin mesh efficiency of the third curve.
     reference_z4 : iterable of int
-        Cycloid teeth whose paper value is marked (REFERENCE §A).
+        Cycloid teeth whose paper value is marked (tests/data/reference_values.md).
 
     Returns
     -------

@@ -91,3 +91,18 @@ def efficiency_for(model: Model, link: int, measure: Callable[[PowerFlowResult],
             return float(brentq(gap, lower, 1.0, xtol=xtol, rtol=1e-15))
     raise SolveError(f"no basic efficiency of links[{link}] in (0.01, 1] gives {target!r} "
                      f"by the virtual-power method (at 1 it gives {top + target!r})")
+
+
+def lossless_cycloid_power(model: Model, cycloid_mesh: int) -> float:
+    """Power the cycloid–pin mesh passes in its carrier's frame with ideal meshes (W).
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> rv40e = load_model("models/rv40e.yaml")                          # doctest: +SKIP
+    >>> round(lossless_cycloid_power(rv40e, 1) / 2270, 4)               # doctest: +SKIP
+    38.6777
+    """
+    from powergraph.statics import solve
+
+    return solve(model.with_mesh_efficiency(1.0)).element(cycloid_mesh).carrier_frame_power

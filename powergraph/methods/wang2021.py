@@ -1,4 +1,6 @@
-"""Wang (2021): the split/virtual power efficiency of an RV reducer (DESIGN §4, SPEC §3).
+"""Wang (2021): the split/virtual power efficiency of an RV reducer (docs/wang2021.md).
+
+Wang (2021), "Efficiency analysis of RV reducers by the split/virtual power method".
 
 From the speeds of the graph (roles found by :func:`~powergraph.methods.rv_roles.find_rv_roles`,
 the paper's numbering in brackets):
@@ -10,8 +12,8 @@ the paper's numbering in brackets):
 
 For the RV-40E (Table 1, every mesh 0.94) this is 88.2 %; the rigorous virtual-power
 method gives 28.7 % for the same file, because it applies η2 to the power the cycloid–pin
-mesh really passes in the crank's frame, about 39 × P, not P + U − L1 (DESIGN §3).
-:func:`powergraph.methods.compare.compare_methods` puts the two side by side.
+mesh really passes in the crank's frame, about 39 × P, not P + U − L1 (docs/theory.md).
+:func:`powergraph.methods.method_comparison.compare_methods` puts the two side by side.
 
 What the result reports besides the paper's numbers (the paper does not give them):
 
@@ -27,13 +29,13 @@ What the result reports besides the paper's numbers (the paper does not give the
   loses exactly L1 in the first-stage mesh and L2 in the cycloid–pin mesh (every body in
   equilibrium, every node balanced; ``realised_efficiencies``). The paper's lossless split
   (its Fig. 5, with ``V``) is ``split_flows``;
-- ``self_locking``: by the virtual-power method, as SPEC §3 defines it.
+- ``self_locking``: by the virtual-power method (efficiency <= 0, docs/format.md).
 
 Examples
 --------
 >>> from powergraph.model import load_model
 >>> result = solve_wang2021(load_model("models/rv40e.yaml"))           # doctest: +SKIP
->>> round(result.split_power, 4), round(result.virtual_power, 5)       # doctest: +SKIP
+>>> round(result.split_power, 4), round(result.paper_virtual_power, 5)       # doctest: +SKIP
 (2211.7949, 58.20513)
 >>> [round(x, 5) for x in result.losses], round(result.efficiency, 6)  # doctest: +SKIP
 ([136.2, 131.52031], 0.882062)
@@ -47,6 +49,7 @@ from powergraph.errors import MethodNotApplicableError, SolveError, StaticsError
 from powergraph.kinematics import Kinematics, solve_speeds
 from powergraph.methods.rv_roles import NEEDS, RVRoles, find_rv_roles
 from powergraph.methods.wang2021_equations import PaperEquations
+from powergraph.methods.wang2021_report import result_to_dict, split_flows, text_report
 from powergraph.model.spec import Model
 from powergraph.statics.flow import Flow
 from powergraph.statics.result import PowerFlowResult
@@ -54,7 +57,11 @@ from powergraph.statics.result import PowerFlowResult
 
 @dataclass(frozen=True)
 class PaperMesh:
-    """One mesh as the paper's method sees it (carrier-frame power it applies η to)."""
+    """One mesh as the paper's method sees it.
+
+    ``applied_power`` is the power the paper applies the mesh's basic efficiency to
+    (``P`` for the first stage, Eq. 13; ``P + U − L1`` for the cycloid–pin mesh, Eq. 14).
+    """
 
     link: int
     role: str            # "first stage" (mesh 1-2) or "cycloid-pin" (mesh 4-5)
@@ -63,13 +70,16 @@ class PaperMesh:
     carrier: str
     driver: str
     efficiency: float
-    virtual_power: float
+    applied_power: float
     loss: float
 
 
 @dataclass(frozen=True)
 class Wang2021Result:
-    """The paper's method on one model; ``to_dict()`` is the SPEC §3 JSON object."""
+    """The paper's method on one model; follows :class:`powergraph.result.Result`.
+
+    ``to_dict()`` is the ``solve --method wang2021 --json`` object (docs/format.md).
+    """
 
     model: Model = field(repr=False, compare=False)
     kinematics: Kinematics = field(repr=False)
@@ -115,9 +125,9 @@ class Wang2021Result:
         return self.equations.split_power
 
     @property
-    def virtual_power(self) -> float:
-        """U (W), Eq. (12)."""
-        return self.equations.virtual_power
+    def paper_virtual_power(self) -> float:
+        """The paper's "virtual power" U (W), Eq. (12) (JSON key ``virtual_power``)."""
+        return self.equations.paper_virtual_power
 
     @property
     def efficiency(self) -> float:
@@ -145,7 +155,7 @@ class Wang2021Result:
 
     @property
     def self_locking(self) -> bool:
-        """SPEC §3: efficiency <= 0 by the virtual-power method (the paper's η if absent)."""
+        """Efficiency <= 0 by the virtual-power method (the paper's η if that failed)."""
         eta = self.virtual_power_efficiency
         return not (eta if eta is not None else self.efficiency) > 0.0
 
@@ -187,21 +197,27 @@ class Wang2021Result:
 
     def split_flows(self) -> list[Flow]:
         """The paper's Fig. 5: the lossless split of P at the planet/crank body into V."""
-        from powergraph.methods.wang2021_report import split_flows
-
         return split_flows(self)
 
     def to_dict(self) -> dict[str, Any]:
-        """SPEC §3 keys plus split_power, virtual_power, losses, beta, alpha and more."""
-        from powergraph.methods.wang2021_report import result_to_dict
-
+        """The ``solve --json`` keys plus ``split_power`` (V), ``virtual_power`` (the
+        paper's U, :attr:`paper_virtual_power`), ``losses`` ([L1, L2]), ``beta``,
+        ``alpha`` and more; per mesh, ``virtual_power`` is the power the paper applies
+        the mesh's efficiency to (:attr:`PaperMesh.applied_power`)."""
         return result_to_dict(self)
 
     def text_report(self) -> str:
         """The readable report of ``powergraph solve MODEL --method wang2021``."""
-        from powergraph.methods.wang2021_report import text_report
-
         return text_report(self)
+
+    def plot(self, ax: Any = None, *, frame: str | None = None, **kwargs: Any):
+        """Draw the flow graph of the paper's losses (``flows``), seen from ``frame``.
+
+        Delegates, lazily, to :func:`powergraph.plot.power_flow.plot_power_flow`.
+        """
+        from powergraph.plot.power_flow import plot_power_flow
+
+        return plot_power_flow(self, frame=frame, ax=ax, **kwargs)
 
 
 def _refuse(found: str) -> MethodNotApplicableError:
@@ -280,7 +296,7 @@ def paper_equations(model: Model, roles: RVRoles | None = None,
     eta1 = model.links[roles.first_mesh].efficiency
     eta2 = model.links[roles.cycloid_mesh].efficiency
     per_watt = PaperEquations(beta, alpha, 1.0, eta1, eta2)
-    if not (beta > 1.0 and per_watt.virtual_power > 0.0):
+    if not (beta > 1.0 and per_watt.paper_virtual_power > 0.0):
         raise _refuse(f"the paper's power directions need V > 0 and U > 0 (β = −w2/w4 > 1, "
                       f"α > β); here β = {beta:.6g}, α = {alpha:.6g}")
     power = _input_power(model, kin, per_watt)

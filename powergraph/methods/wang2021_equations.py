@@ -16,7 +16,7 @@ class PaperEquations:
     Examples
     --------
     >>> eq = PaperEquations(beta=39.0, alpha=40.0, input_power=2270.0, eta1=0.94, eta2=0.94)
-    >>> round(eq.split_power, 4), round(eq.virtual_power, 5), round(eq.efficiency, 6)
+    >>> round(eq.split_power, 4), round(eq.paper_virtual_power, 5), round(eq.efficiency, 6)
     (2211.7949, 58.20513, 0.882062)
     """
 
@@ -32,7 +32,7 @@ class PaperEquations:
         return self.input_power * (1.0 - 1.0 / self.beta)
 
     @property
-    def virtual_power(self) -> float:
+    def paper_virtual_power(self) -> float:
         """U from ``α = (P + U)/(P − V)`` (Eq. 12)."""
         return self.alpha * (self.input_power - self.split_power) - self.input_power
 
@@ -44,7 +44,7 @@ class PaperEquations:
     @property
     def cycloid_power(self) -> float:
         """P + U − L1: the power Eq. (14) applies η2 to."""
-        return self.input_power + self.virtual_power - self.first_loss
+        return self.input_power + self.paper_virtual_power - self.first_loss
 
     @property
     def cycloid_loss(self) -> float:
@@ -59,6 +59,6 @@ class PaperEquations:
     def to_dict(self) -> dict[str, float]:
         return {"beta": self.beta, "alpha": self.alpha, "input_power": self.input_power,
                 "eta1": self.eta1, "eta2": self.eta2, "split_power": self.split_power,
-                "virtual_power": self.virtual_power, "losses": [self.first_loss,
+                "virtual_power": self.paper_virtual_power, "losses": [self.first_loss,
                                                                 self.cycloid_loss],
                 "efficiency": self.efficiency}

@@ -1,7 +1,7 @@
 """JSON object, readable report and the paper's Fig. 5 graph of a :class:`Wang2021Result`.
 
 Component ids in lists are written as in the model file (``model.raw_id``); dictionary
-keys are their string forms, as in the virtual-power report (SPEC §3).
+keys are their string forms, as in the virtual-power report (docs/format.md).
 
 Examples
 --------
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from powergraph.methods.tuning import lossless_cycloid_power
 from powergraph.statics.flow import GENERATOR, MOTOR, Flow
 
 if TYPE_CHECKING:
@@ -59,12 +60,12 @@ def _meshes(result: "Wang2021Result") -> list[dict[str, Any]]:
     raw = result.model.raw_id
     return [{"link": m.link, "role": m.role, "between": [raw(m.a), raw(m.b)],
              "carrier": raw(m.carrier), "driver": raw(m.driver), "efficiency": m.efficiency,
-             "virtual_power": m.virtual_power, "loss": m.loss} for m in result.meshes]
+             "virtual_power": m.applied_power, "loss": m.loss} for m in result.meshes]
 
 
 def result_to_dict(result: "Wang2021Result") -> dict[str, Any]:
-    """SPEC §3 keys with the paper's numbers, then ``split_power`` (V), ``virtual_power``
-    (U), ``losses`` ([L1, L2]), ``beta``, ``alpha``, and: ``roles``, ``equations`` (the
+    """The ``solve --json`` keys with the paper's numbers, then ``split_power`` (V),
+    ``virtual_power`` (the paper's U), ``losses`` ([L1, L2]), ``beta``, ``alpha``, and: ``roles``, ``equations`` (the
     paper's equation per quantity), ``virtual_power_efficiency`` (rigorous η, same
     file), ``split_flows`` (Fig. 5) and ``realised_efficiencies`` (the tuned basic
     efficiencies behind ``flows``)."""
@@ -77,7 +78,7 @@ def result_to_dict(result: "Wang2021Result") -> dict[str, Any]:
         "total_loss": result.total_loss, "speeds": result.speeds, "torques": result.torques,
         "meshes": _meshes(result), "flows": [f.to_dict() for f in result.flows()],
         "circulating_power": result.circulating_power, "self_locking": result.self_locking,
-        "split_power": result.split_power, "virtual_power": result.virtual_power,
+        "split_power": result.split_power, "virtual_power": result.paper_virtual_power,
         "losses": list(result.losses), "beta": result.beta, "alpha": result.alpha,
         "roles": result.roles.to_dict(model),
         "equations": {"beta": "Eq. 8: -w2/w4", "alpha": "Eq. 12: (w4 - w3)/w4",
@@ -107,15 +108,13 @@ def _why(result: "Wang2021Result") -> list[str]:
     vp = result.virtual_power_result
     if vp is None:
         return ["virtual-power method: no consistent solution (see `powergraph solve`)"]
-    from powergraph.methods.compare import lossless_cycloid_power
-
     passed = lossless_cycloid_power(result.model, result.roles.cycloid_mesh)
     eq = result.equations
     return [f"virtual-power method, same file   {vp.efficiency * 100:.4f} %",
             "  why they differ: Eq. (14) applies eta2 to P + U - L1 = "
             f"{eq.cycloid_power / eq.input_power:.3g} x P,",
             "  but in the crank's frame, where a basic efficiency belongs, the cycloid-pin",
-            f"  mesh passes {passed / eq.input_power:.3g} x P (ideal meshes; DESIGN §3)."]
+            f"  mesh passes {passed / eq.input_power:.3g} x P (ideal meshes)."]
 
 
 def text_report(result: "Wang2021Result") -> str:
@@ -129,7 +128,7 @@ def text_report(result: "Wang2021Result") -> str:
               f"virtual power ratio alpha         {eq.alpha:.6g}    (Eq. 12)",
               f"input power P                     {_power(eq.input_power)}",
               f"split power V                     {_power(eq.split_power)}    (Eq. 9)",
-              f"virtual power U                   {_power(eq.virtual_power)}    (Eq. 12)",
+              f"virtual power U                   {_power(eq.paper_virtual_power)}    (Eq. 12)",
               f"mesh efficiencies eta1, eta2      {eq.eta1:.6g}, {eq.eta2:.6g}",
               f"L1 = P(1 - eta1)                  {_power(eq.first_loss)}    (Eq. 13)",
               f"L2 = (P + U - L1)(1 - eta2)       {_power(eq.cycloid_loss)}    (Eq. 14)",

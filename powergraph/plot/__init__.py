@@ -1,14 +1,32 @@
-"""Plotting. Every function takes ``ax=None``, returns the axes, and computes nothing.
+"""Plotting: the one layer that draws (after statics, methods and analyses; before cli).
 
-Importing this package imports matplotlib (with the non-interactive Agg backend unless
-one was chosen), so the rest of powergraph imports it lazily.
+Every plot function takes the result it draws and ``ax=None`` (a new figure from
+:mod:`matplotlib.pyplot` when omitted), draws, returns the axes, and computes nothing:
+the numbers come from the result.
+
+- :mod:`powergraph.plot.power_flow`: power-flow diagrams of a solve (and of Wang 2021);
+- :mod:`powergraph.plot.layout`: their layout, pure computation without matplotlib;
+- :mod:`powergraph.plot.wang2021`: the paper's Figs. 12–13 (``FigureData``);
+- :mod:`powergraph.plot.backlash`, :mod:`~powergraph.plot.cycloid`,
+  :mod:`~powergraph.plot.volume`, :mod:`~powergraph.plot.sweep`,
+  :mod:`~powergraph.plot.compare`: the analyses' figures.
+
+No backend is chosen here or anywhere in the library: figures use the backend the user
+chose (``MPLBACKEND``, ``matplotlib.use`` or the notebook's), so ``plt.show()`` works.
+Only the command line, which writes files, selects a file backend.
+
+Layering
+--------
+A module imports only from earlier layers at import time (errors/result → model →
+kinematics → statics → methods, analyses → plot → cli). The **one exception** is the
+``plot()`` method of every result (:class:`powergraph.result.Result`): it imports its
+drawing function from this package *inside the method*, lazily, so results stay in their
+own layer and importing them never imports matplotlib.
+
+Examples
+--------
+>>> import powergraph.plot                      # imports no matplotlib
+>>> import sys
+>>> "matplotlib.pyplot" in sys.modules or "no pyplot yet"  # doctest: +SKIP
+'no pyplot yet'
 """
-from __future__ import annotations
-
-import matplotlib
-
-if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-    try:
-        matplotlib.use("Agg")
-    except Exception:  # pragma: no cover - a backend already in use stays
-        pass

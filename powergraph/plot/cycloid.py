@@ -1,4 +1,4 @@
-"""Figures of the cycloid fluctuation (seeds/003, Csobán 2021, Figs. 9–18).
+"""Figures of the cycloid fluctuation (Csobán 2021, Figs. 9–18).
 
 Every function takes a result of :mod:`powergraph.analyses.cycloid` and ``ax=None``, draws,
 and returns the axes. Nothing is computed here.
@@ -8,7 +8,6 @@ from __future__ import annotations
 import numpy as np
 import matplotlib.pyplot as plt
 
-from powergraph import plot as _backend  # noqa: F401  (selects a non-interactive backend)
 from powergraph.analyses.cycloid.fluctuation import deviation_percent
 
 

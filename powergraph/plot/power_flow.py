@@ -7,8 +7,8 @@ Zero-power links (the held frame's, the paper's converting principle 1) are dash
 Losses leave each mesh into a "loss" sink; arrows on a circulating loop are red.
 ``frame`` draws the transformation gear train: the virtual powers seen from that body.
 
-The content comes from :func:`powergraph.analyses.flow_view.flow_view` and the geometry
-from :func:`powergraph.analyses.flow_layout.layout_flow`; this module only draws them.
+The content comes from :func:`powergraph.plot.layout.view.flow_view` and the geometry
+from :func:`powergraph.plot.layout.layout.layout_flow`; this module only draws them.
 
 Examples
 --------
@@ -23,16 +23,15 @@ from __future__ import annotations
 
 from typing import Any
 
-import powergraph.plot  # noqa: F401  (selects a non-interactive backend)
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyBboxPatch, PathPatch, Polygon, Rectangle
 from matplotlib.path import Path
 
-from powergraph.analyses.flow_geometry import Box
-from powergraph.analyses.flow_layout import FlowLayout, LayoutStyle, NodePlace, layout_flow
-from powergraph.analyses.flow_place import LABEL_PAD
-from powergraph.analyses.flow_view import FlowView, flow_view, format_power, format_share
+from powergraph.plot.layout.geometry import Box
+from powergraph.plot.layout.layout import FlowLayout, LayoutStyle, NodePlace, layout_flow
+from powergraph.plot.layout.place import LABEL_PAD
+from powergraph.plot.layout.view import FlowView, flow_view, format_power, format_share
 
 INK = "#1f3b5c"
 COLOURS = {"power": "#2c6fad", "zero": "#8a8a8a", "loss": "#b5651d", "loop": "#c0392b"}
@@ -43,7 +42,7 @@ INCH = 72.0
 
 def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
                     font_size: float = 9.0, legend: bool = True, subtitle: bool = True,
-                    view: FlowView | None = None):
+                    view: FlowView | None = None, figure: Any = None):
     """Draw the power-flow graph of ``result`` seen from the body of ``frame``.
 
     Parameters
@@ -59,6 +58,9 @@ def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
         Draw the symbol key under the diagram, and the P / efficiency line in the title.
     view : FlowView, optional
         ``flow_view(result, frame)`` if already at hand.
+    figure : matplotlib Figure, optional
+        When ``ax`` is None, the (empty) figure to size and draw in; a new pyplot figure
+        otherwise.
 
     Returns
     -------
@@ -68,7 +70,7 @@ def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
         {node: (patch, text)}``, ``ax.powergraph_layout`` and ``ax.powergraph_view``.
     """
     view = view if view is not None else flow_view(result, frame)
-    fig = ax.figure if ax is not None else plt.figure()
+    fig = ax.figure if ax is not None else figure if figure is not None else plt.figure()
     style = LayoutStyle(font_size=font_size)
     layout = layout_flow(view, _measurer(fig), style)
     scale = _prepare_axes(fig, ax, layout, legend) if ax is not None else 1.0
@@ -89,14 +91,17 @@ def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
 
 # --- figure and axes -------------------------------------------------------------------
 def _measurer(fig):
-    """Text extents in points, measured with the figure's renderer (cached)."""
-    renderer = fig.canvas.get_renderer()
+    """Text extents in points, measured with the figure's renderer (cached).
+
+    The renderer is the figure's own (whatever backend the user chose); no backend is
+    selected here.
+    """
     cache: dict[tuple[str, float], tuple[float, float]] = {}
 
     def size(text: str, font: float) -> tuple[float, float]:
         if (text, font) not in cache:
             probe = fig.text(0, 0, text, fontsize=font)
-            box = probe.get_window_extent(renderer)
+            box = probe.get_window_extent()
             probe.remove()
             cache[(text, font)] = (box.width * INCH / fig.dpi, box.height * INCH / fig.dpi)
         return cache[(text, font)]
@@ -122,7 +127,7 @@ def _natural_axes(fig, layout: FlowLayout, legend: bool):
 def _prepare_axes(fig, ax, layout: FlowLayout, legend: bool) -> float:
     """Fit the layout into a given axes; returns the scale applied to fonts and lines."""
     b = layout.bounds
-    box = ax.get_window_extent(fig.canvas.get_renderer())
+    box = ax.get_window_extent()
     w_pt, h_pt = box.width * INCH / fig.dpi, box.height * INCH / fig.dpi
     scale = min(w_pt / (b.x1 - b.x0), h_pt / (b.y1 - b.y0))
     ax.set_xlim(b.x0, b.x1)

@@ -14,7 +14,6 @@ from __future__ import annotations
 import textwrap
 from typing import Any
 
-import powergraph.plot  # noqa: F401  (selects the Agg backend when none is chosen)
 from powergraph.methods.figures import FigureData
 
 #: Line style per curve key: the paper's method solid, the virtual-power method broken.

@@ -1,4 +1,4 @@
-"""The JSON object of SPEC §3 and the readable text report of ``powergraph solve``."""
+"""The JSON object and the readable text report of ``powergraph solve`` (docs/format.md)."""
 from __future__ import annotations
 
 import math
@@ -10,7 +10,9 @@ RPM = 60.0 / (2.0 * math.pi)
 
 
 def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
-    """SPEC §3 keys, plus ``passes`` and ``load_sharing_assumed``.
+    """The ``solve --json`` keys (docs/format.md), plus ``passes`` and
+    ``load_sharing_assumed``. Per mesh, ``virtual_power`` is the power the mesh passes in
+    its carrier's frame (``ElementFlow.carrier_frame_power``).
 
     Component ids in lists (``between``, ``carrier``, ``driver``) are written as in the
     model file; dictionary keys are their string forms.
@@ -19,7 +21,7 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
     raw = model.raw_id
     meshes = [{"link": e.link, "between": [raw(e.a), raw(e.b)], "carrier": raw(e.carrier),
                "driver": raw(e.driver) if e.driver is not None else None,
-               "virtual_power": e.virtual_power, "loss": e.loss, "efficiency": e.efficiency,
+               "virtual_power": e.carrier_frame_power, "loss": e.loss, "efficiency": e.efficiency,
                "willis_ratio": e.ratio}
               for e in result.meshes]
     return {
@@ -76,7 +78,7 @@ def text_report(result: PowerFlowResult) -> str:
     for e in result.meshes:
         driver = str(raw(e.driver)) if e.driver is not None else "-"
         lines.append(f"  {e.link:<6}{f'{raw(e.a)}-{raw(e.b)}':<10}{str(raw(e.carrier)):<9}"
-                     f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.virtual_power):>18}"
+                     f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.carrier_frame_power):>18}"
                      f"{_fmt_power(e.loss):>14}")
     if result.load_sharing_assumed:
         lines += ["", "note: load sharing between parallel paths is statically indeterminate; "

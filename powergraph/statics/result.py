@@ -1,4 +1,7 @@
-"""Results of a power-flow solve: frozen dataclasses indexed by the model's ids (SPEC §3)."""
+"""Results of a power-flow solve: frozen dataclasses indexed by the model's ids.
+
+The JSON object of ``powergraph solve --json`` is described in docs/format.md.
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -14,7 +17,8 @@ class ElementFlow:
 
     ``torques`` is the torque the element applies to each of its bodies (N·m);
     ``driver`` the gear that feeds power into it in its carrier's frame (None when no
-    power passes); ``virtual_power`` that power (W, >= 0); ``loss`` what it dissipates.
+    power passes); ``carrier_frame_power`` that power, the mesh's *virtual power* in
+    its carrier's frame (W, >= 0; JSON key ``virtual_power``); ``loss`` what it dissipates.
     """
 
     link: int
@@ -28,15 +32,16 @@ class ElementFlow:
     factor: float
     torques: Mapping[str, float]
     driver: str | None
-    virtual_power: float
+    carrier_frame_power: float
     loss: float
 
 
 @dataclass(frozen=True)
 class PowerFlowResult:
-    """Everything a virtual-power solve finds (DESIGN §3).
+    """Everything a virtual-power solve finds (see docs/theory.md).
 
     Indexed by the model's component ids (strings); bodies are named like "2/3".
+    Follows the result protocol :class:`powergraph.result.Result`.
 
     Examples
     --------
@@ -135,14 +140,28 @@ class PowerFlowResult:
 
         return split_powers(self.flows(frame))
 
-    def plot(self, frame: str | None = None, ax: Any = None, **kwargs: Any):
-        """Draw the power-flow diagram (delegates to :mod:`powergraph.plot.power_flow`)."""
+    def plot(self, ax: Any = None, *, frame: str | None = None, **kwargs: Any):
+        """Draw the power-flow diagram, seen from ``frame`` (default the housing).
+
+        Delegates, lazily, to :func:`powergraph.plot.power_flow.plot_power_flow`.
+        """
         from powergraph.plot.power_flow import plot_power_flow
 
         return plot_power_flow(self, frame=frame, ax=ax, **kwargs)
 
+    def text_report(self) -> str:
+        """The readable report ``powergraph solve`` prints."""
+        from powergraph.statics.report import text_report
+
+        return text_report(self)
+
     def to_dict(self) -> dict[str, Any]:
-        """The JSON object of SPEC §3."""
+        """The JSON object of ``powergraph solve --json`` (see docs/format.md).
+
+        Per mesh, the key ``virtual_power`` is the mesh's power in its carrier's frame
+        (:attr:`ElementFlow.carrier_frame_power`), the power its basic efficiency
+        applies to.
+        """
         from powergraph.statics.report import result_to_dict
 
         return result_to_dict(self)

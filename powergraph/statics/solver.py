@@ -83,7 +83,7 @@ def _element_flow(model: Model, el: Element, force: float, factor: float, code: 
     return ElementFlow(link=el.link, kind=el.kind, a=el.a, b=el.b, carrier=el.carrier,
                        ratio=el.ratio, efficiency=el.efficiency, force=float(force),
                        factor=float(factor), torques=MappingProxyType(torques), driver=driver,
-                       virtual_power=float(virtual), loss=float(loss))
+                       carrier_frame_power=float(virtual), loss=float(loss))
 
 
 def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: Equilibrium,

@@ -1,7 +1,7 @@
-"""Backlash of internal involute pairs (REFERENCE §D, seeds/002 Li et al. 2012) and the
-lost motion of whole trains (hand derivations).
+"""Backlash of internal involute pairs (Li et al. 2012; tests/data/reference_values.md) and
+the lost motion of whole trains (hand derivations).
 
-Expected values come from REFERENCE.md §D, the paper's printed Tables 2-3 and
+Expected values come from tests/data/reference_values.md (Li et al. 2012), the paper's printed Tables 2-3 and
 Conclusions, closed forms, or hand derivations written here -- never from the code.
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from powergraph.backlash import (
+from powergraph.analyses.backlash import (
     analyse_backlash,
     centre_distance,
     centre_distance_curve,
@@ -78,7 +78,7 @@ def test_equivalent_shift_reproduces_the_measured_m(pairs, pair, gear, z, intern
 @pytest.mark.parametrize("pair,internal,external", [(1, 0.0192, -0.0179), (2, 0.0179, -0.0134)])
 def test_equivalent_shift_matches_reference_recomputation(pairs, pair, internal,
                                                           external) -> None:
-    # REFERENCE §D: "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
+    # tests/data/reference_values.md (Li 2012): "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
     # (printed in Table 3: 0.019 / -0.016 and 0.017 / -0.014).
     shift = pairs[pair].equivalent_shift
     assert shift[pairs[pair].internal] == pytest.approx(internal, abs=0.00005)
@@ -102,7 +102,7 @@ def test_eccentric_offset_paper_variant_is_table_3(pairs, pair, printed) -> None
 
 @pytest.mark.parametrize("pair,reference", [(1, 2.522), (2, 2.514)])
 def test_eccentric_offset_standard_variant_is_reference(pairs, pair, reference) -> None:
-    # REFERENCE §D: with tan α in Eq. 15, a'' ≈ 2.522 / 2.514 mm.
+    # tests/data/reference_values.md (Li 2012): with tan α in Eq. 15, a'' ≈ 2.522 / 2.514 mm.
     assert pairs[pair].eccentric_offset["standard"] == pytest.approx(reference, abs=0.001)
 
 
@@ -151,9 +151,9 @@ def test_standard_variant_is_the_tooth_thickness_condition(pairs, pair) -> None:
 
 
 def test_paper_variant_with_printed_shifts_is_reference() -> None:
-    # REFERENCE §D: "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15 without tan α fed
+    # tests/data/reference_values.md (Li 2012): "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15 without tan α fed
     # with the printed shifts 0.019/-0.016 and 0.017/-0.014.
-    from powergraph.backlash import no_backlash_centre_distance, working_pressure_angle
+    from powergraph.analyses.backlash import no_backlash_centre_distance, working_pressure_angle
 
     for (xi, xe, runout, bearings), expected in [((0.019, -0.016, 0.037, 0.011), 2.573),
                                                  ((0.017, -0.014, 0.043, 0.010), 2.561)]:
@@ -176,7 +176,7 @@ def test_eq1_constant() -> None:
     (1, arcmin(6, 20.4), arcmin(6, 57.1), arcmin(2, 3.5)),
     (2, arcmin(6, 3.7), arcmin(6, 37.1), arcmin(2, 23.5))])
 def test_lost_motion_terms_are_reference(pairs, pair, thickness_runout, before, after) -> None:
-    # REFERENCE §D, to its printed 0.1".
+    # tests/data/reference_values.md (Li et al. 2012), to its printed 0.1".
     terms = pairs[pair].lost_motion_arcmin
     assert terms["thickness"] + terms["runout"] == pytest.approx(thickness_runout,
                                                                  abs=0.06 * SECOND)

@@ -28,7 +28,7 @@ def test_rows_match_single_solves_exactly() -> None:
         assert row.circulating_power == forward.circulating_power
         assert row.meshes == len(model.meshes)
         assert row.max_virtual_power_ratio == max(
-            e.virtual_power for e in forward.meshes) / forward.input_power
+            e.carrier_frame_power for e in forward.meshes) / forward.input_power
         if len(model.inputs) == 1 and len(model.outputs) == 1:
             back = pg.solve(backdriven(model))
             assert_conservation(back)
@@ -90,7 +90,7 @@ def test_compare_bad_output_suffix_exits_2(tmp_path) -> None:
 
 
 def test_volume_and_power_density_columns_when_geometry_is_present() -> None:
-    from powergraph.volume import model_volume
+    from powergraph.analyses.volume import model_volume
 
     rv = pg.load_model(MODELS / "rv40e.yaml")
     row, plain = compare_models([rv, pg.load_model(MODELS / "wolfrom_3k.yaml")])

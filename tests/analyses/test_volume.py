@@ -1,4 +1,4 @@
-"""Volume analysis, seeds/004 (Pan & Wang 2019): every formula against a hand computation,
+"""Volume analysis, Pan & Wang 2019: every formula against a hand computation,
 the polygon areas against closed forms, and the pitch-circle error for z = 12…80.
 
 Expected values are written out as arithmetic from the paper's printed equations (with the
@@ -162,7 +162,7 @@ def test_power_density_in_kw_per_litre(rv40e) -> None:
     assert vol.power_density(2270.0, 1e6) == pytest.approx(2.27)
     assert result.power_density(2270.0) == pytest.approx(2.27 / (PI * 201908.4 * 1e-6))
     assert vol.POWER_DENSITY_UNIT == "kW/L"
-    from powergraph.volume import model_volume
+    from powergraph.analyses.volume import model_volume
 
     assert model_volume is vol.model_volume
 

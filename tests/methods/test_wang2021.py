@@ -1,8 +1,8 @@
-"""Wang (2021)'s split/virtual power method (REFERENCE §A) and its comparison with the
-virtual-power method (REFERENCE §B, DESIGN §3).
+"""Wang (2021)'s split/virtual power method and its comparison with the virtual-power
+method (docs/theory.md).
 
-Expected values come from REFERENCE.md or from the paper's Eqs. (1)–(20) written out
-below as formulas in the teeth — never from the code under test.
+Expected values come from tests/data/reference_values.md or from the paper's
+Eqs. (1)–(20) written out below as formulas in the teeth — never from the code under test.
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import yaml
 
 import powergraph as pg
 from powergraph.errors import MethodNotApplicableError, ModelError
-from powergraph.methods.compare import compare_methods, equivalent_cycloid_efficiency
+from powergraph.methods.method_comparison import compare_methods, equivalent_cycloid_efficiency
 from powergraph.methods.rv_roles import find_rv_roles
 from powergraph.methods.wang2021 import solve_wang2021
 from powergraph.testing import assert_conservation
@@ -64,9 +64,9 @@ def rv40e():
 
 
 def test_rv40e_printed_digits(rv40e) -> None:
-    # REFERENCE §A, "printed" column (Eqs. 16-20).
+    # tests/data/reference_values.md (Wang 2021), "printed" column (Eqs. 16-20).
     assert round(rv40e.split_power, 1) == 2211.8
-    assert round(rv40e.virtual_power, 4) == 58.2051
+    assert round(rv40e.paper_virtual_power, 4) == 58.2051
     assert round(rv40e.losses[0], 1) == 136.2
     assert round(rv40e.losses[1], 2) == 131.52
     assert round(rv40e.efficiency * 100, 1) == 88.2
@@ -76,18 +76,18 @@ def test_rv40e_exact_values(rv40e) -> None:
     # Closed forms of Eqs. (16)-(17): V = (2 z4 - z5)/z4 P, U = (z5 - z4)/z4 P.
     P = 2270.0
     assert abs(rv40e.split_power - (2 * 39 - 40) / 39 * P) < 1e-6
-    assert abs(rv40e.virtual_power - (40 - 39) / 39 * P) < 1e-6
-    for key, value in (("V", rv40e.split_power), ("U", rv40e.virtual_power),
+    assert abs(rv40e.paper_virtual_power - (40 - 39) / 39 * P) < 1e-6
+    for key, value in (("V", rv40e.split_power), ("U", rv40e.paper_virtual_power),
                        ("L1", rv40e.losses[0]), ("L2", rv40e.losses[1]),
                        ("eta", rv40e.efficiency)):
         assert abs(value - RV40E_HAND[key]) < 1e-6, key
-    # REFERENCE §A "exact" column, to its last printed digit (0.882061 is within 1e-6:
+    # tests/data/reference_values.md (Wang 2021) "exact" column, to its last printed digit (0.882061 is within 1e-6:
     # the exact value is 0.88206154, so the column truncates).
     assert rv40e.split_power == pytest.approx(2211.7949, abs=0.5e-4)
-    assert rv40e.virtual_power == pytest.approx(58.20513, abs=0.5e-5)
+    assert rv40e.paper_virtual_power == pytest.approx(58.20513, abs=0.5e-5)
     assert rv40e.losses[1] == pytest.approx(131.52031, abs=0.5e-5)
     assert abs(rv40e.efficiency - 0.882061) < 1e-6
-    # REFERENCE §A: eta = eta1 - (eta1 + 1/beta)(1 - eta2).
+    # tests/data/reference_values.md (Wang 2021): eta = eta1 - (eta1 + 1/beta)(1 - eta2).
     assert rv40e.efficiency == pytest.approx(0.94 - (0.94 + 1 / 39) * 0.06, abs=1e-12)
 
 
@@ -97,7 +97,7 @@ def test_rv40e_ratios_from_speeds(rv40e) -> None:
     assert rv40e.alpha == pytest.approx(40, rel=1e-12)     # z5/(z5 - z4)
     w = rv40e.speeds
     assert w["2"] / w["4"] == pytest.approx(RV40E_HAND["i24"], rel=1e-12)  # Eq. (5)
-    # REFERENCE §B speeds with w1 = 1500 rpm.
+    # tests/data/reference_values.md (virtual-power RV-40E) speeds with w1 = 1500 rpm.
     assert w["3"] == pytest.approx(-50.6290, abs=5e-5)
     assert w["6"] == pytest.approx(1.29818, abs=5e-6)
 
@@ -113,7 +113,7 @@ def test_roles_found_from_the_graph() -> None:
 def test_renamed_shuffled_copy_gives_the_same_numbers(rv40e) -> None:
     result = solve_wang2021(pg.load_model(RENAMED))
     check(result)
-    for name in ("split_power", "virtual_power", "efficiency", "beta", "alpha", "ratio"):
+    for name in ("split_power", "paper_virtual_power", "efficiency", "beta", "alpha", "ratio"):
         assert getattr(result, name) == pytest.approx(getattr(rv40e, name), rel=1e-12), name
     assert result.losses == pytest.approx(rv40e.losses, rel=1e-12)
     data = result.to_dict()
@@ -130,7 +130,7 @@ def test_small_rv_from_the_issue() -> None:
     check(result)
     # The issue's printed values ...
     assert round(result.split_power, 3) == 965.517
-    assert round(result.virtual_power, 3) == 34.483
+    assert round(result.paper_virtual_power, 3) == 34.483
     assert round(result.losses[0], 3) == 30.0
     assert round(result.losses[1], 3) == 40.179
     assert round(result.efficiency, 6) == 0.929821
@@ -138,7 +138,7 @@ def test_small_rv_from_the_issue() -> None:
     assert result.ratio == pytest.approx(hand["ratio"], rel=1e-12)
     assert result.beta == pytest.approx(hand["beta"], rel=1e-12)
     assert result.alpha == pytest.approx(hand["alpha"], rel=1e-12)
-    for key, value in (("V", result.split_power), ("U", result.virtual_power),
+    for key, value in (("V", result.split_power), ("U", result.paper_virtual_power),
                        ("L1", result.losses[0]), ("L2", result.losses[1]),
                        ("eta", result.efficiency)):
         assert abs(value - hand[key]) < 1e-6, key
@@ -192,7 +192,7 @@ def test_split_flows_are_the_papers_fig5(rv40e) -> None:
 
 
 def _vp_closed_form(z1, z2, z4, z5, eta1, eta2):
-    """Virtual-power η of the RV, derived by hand (DESIGN §3), gear 1 driving mesh 1-2
+    """Virtual-power η of the RV, derived by hand (docs/theory.md), gear 1 driving mesh 1-2
     in the planet frame (f = eta1) and the pin gear driving mesh 4-5 in the crank's frame
     (f = 1/eta2). Torque balance of 2/3, 4 and 6/7 with input torque T:
     T_out = -T [1 + k eta1 + k eta1/(z5/(z4 eta2) - 1)], k = z2/z1, so
@@ -204,8 +204,8 @@ def _vp_closed_form(z1, z2, z4, z5, eta1, eta2):
 def test_virtual_power_side_by_side() -> None:
     model = pg.load_model(RV40E)
     comparison = compare_methods(model)
-    assert_conservation(comparison.virtual_power)
-    # REFERENCE §B: 0.287376, L1 135.0744 W, L2 1482.583 W.
+    assert_conservation(comparison.rigorous)
+    # tests/data/reference_values.md (virtual-power RV-40E): 0.287376, L1 135.0744 W, L2 1482.583 W.
     assert comparison.virtual_power_efficiency == pytest.approx(0.287376, abs=5e-7)
     l1, l2 = comparison.virtual_power_losses
     assert l1 == pytest.approx(135.0744, abs=5e-5)
@@ -214,15 +214,15 @@ def test_virtual_power_side_by_side() -> None:
         _vp_closed_form(12, 36, 39, 40, 0.94, 0.94), rel=1e-10)
     assert comparison.paper_efficiency == pytest.approx(RV40E_HAND["eta"], rel=1e-12)
     # Lossless, the cycloid-pin mesh passes |T_frame w3| = (i - 1) P |w3/w1| = 120·39/121 P.
-    assert comparison.lossless_virtual_power == pytest.approx(2270 * 120 * 39 / 121,
+    assert comparison.lossless_carrier_frame_power == pytest.approx(2270 * 120 * 39 / 121,
                                                               rel=1e-10)
 
 
 def test_needle_mesh_case() -> None:
     model = pg.load_model(RV40E).with_link(1, efficiency=0.998)
     comparison = compare_methods(model)
-    assert_conservation(comparison.virtual_power)
-    # REFERENCE §B: 0.873043, L2 153.118 W.
+    assert_conservation(comparison.rigorous)
+    # tests/data/reference_values.md (virtual-power RV-40E): 0.873043, L2 153.118 W.
     assert comparison.virtual_power_efficiency == pytest.approx(0.873043, abs=5e-7)
     assert comparison.virtual_power_losses[1] == pytest.approx(153.118, abs=5e-4)
 

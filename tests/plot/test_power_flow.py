@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import powergraph as pg  # noqa: E402
-from powergraph.analyses.flow_view import flow_view, format_power, format_share  # noqa: E402
+from powergraph.plot.layout.view import flow_view, format_power, format_share  # noqa: E402
 from powergraph.errors import UsageError  # noqa: E402
 from powergraph.model import loads_model  # noqa: E402
 from powergraph.plot.power_flow import COLOURS, plot_power_flow  # noqa: E402
@@ -230,7 +230,7 @@ def test_wang2021_result_draws(solve_ok) -> None:
 
 
 class FlowsOnly:
-    """A result that only offers SPEC §3 JSON (how other methods' results look)."""
+    """A result that only offers the ``solve --json`` object (how other methods' results look)."""
 
     name = "listed"
 

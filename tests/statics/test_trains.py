@@ -66,7 +66,7 @@ def test_closed_differential_circulates_twice_the_input_when_ideal() -> None:
     power = 1000.0
     assert result.ratio == pytest.approx(-8.0, rel=1e-12)
     assert result.circulating_power == pytest.approx(2 * power, rel=1e-9)
-    assert result.element(2).virtual_power == pytest.approx(3 * power, rel=1e-9)
+    assert result.element(2).carrier_frame_power == pytest.approx(3 * power, rel=1e-9)
     lossy = solve(load("closed_differential.yaml"))
     assert 0 < lossy.circulating_power < 2 * power and lossy.efficiency < 1
 
@@ -150,13 +150,13 @@ def test_losses_are_the_same_in_every_frame() -> None:
 
 
 def test_rv_cycloid_mesh_rolls_n_plus_one_times_its_power() -> None:
-    """DESIGN §3: in the crank's frame the cycloid-pin mesh passes (N + 1) = 40 × the power
+    """See docs/theory.md: in the crank's frame the cycloid-pin mesh passes (N + 1) = 40 × the power
     it delivers to the cycloid: |w4 - w3| / |w4| with w3/w4 = z4/(z4 - z5) = -39 (Eq. 4)."""
     result = solve(load("rv40e.yaml").with_mesh_efficiency(1.0))
     mesh = result.element(1)
     into_cycloid = next(f.power for f in result.flows()
                         if f.source == "mesh 4-5" and f.target == "4")
-    assert mesh.virtual_power / into_cycloid == pytest.approx(40.0, rel=1e-12)
+    assert mesh.carrier_frame_power / into_cycloid == pytest.approx(40.0, rel=1e-12)
 
 
 def test_self_locking_reports_no_positive_efficiency_and_consistent_directions() -> None:

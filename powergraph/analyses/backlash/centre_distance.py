@@ -39,7 +39,22 @@ class CentreDistanceCurve:
     maximum: float
     minimum: float
 
+    def text_report(self) -> str:
+        """The sampled range and the Eq. (5)/(6) bounds."""
+        from powergraph.analyses.backlash.report import curve_text
+
+        return curve_text(self)
+
+    def plot(self, ax=None, **kwargs):
+        """|AB| over the turns (delegates, lazily, to
+        :func:`powergraph.plot.backlash.plot_centre_distance`)."""
+        from powergraph.plot.backlash import plot_centre_distance
+
+        return plot_centre_distance(self, ax=ax, **kwargs)
+
     def to_dict(self) -> dict:
+        """``{turns, distance (mm), offset, period_turns, maximum_eq5, minimum_eq6,
+        eccentricity, beta}``."""
         return {"turns": list(self.turns), "distance": list(self.distance),
                 "offset": self.offset, "period_turns": self.period_turns,
                 "maximum_eq5": self.maximum, "minimum_eq6": self.minimum,

@@ -111,7 +111,22 @@ class PairBacklash:
         key = "after" if self.assembly == "compensated" else "before"
         return self.lost_motion_arcmin[key]
 
+    def text_report(self) -> str:
+        """The readable report of the pair (gear ids as given)."""
+        from powergraph.analyses.backlash.report import pair_text
+
+        return pair_text(self)
+
+    def plot(self, ax=None, **kwargs):
+        """Lost-motion terms before and after compensation (delegates, lazily, to
+        :func:`powergraph.plot.backlash.plot_lost_motion`)."""
+        from powergraph.plot.backlash import plot_lost_motion
+
+        return plot_lost_motion({f"{self.internal}-{self.external}": self}, ax=ax, **kwargs)
+
     def to_dict(self) -> dict:
+        """Every quantity; per-gear values keyed by gear id, per-variant ones by
+        ``"paper"`` / ``"standard"``; lengths in mm, lost motion in arcmin."""
         return {"internal": self.internal, "external": self.external,
                 "equivalent_shift": dict(self.equivalent_shift),
                 "shift_coefficient": dict(self.shift_coefficient),

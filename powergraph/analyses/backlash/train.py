@@ -18,13 +18,14 @@ parts in parallel do not add up.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from powergraph.analyses.backlash.pair import PairBacklash, analyse_pair, lost_motion_arcmin
 from powergraph.errors import KinematicsError, ModelError, UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Link, Model
+from powergraph.result import nothing_to_draw
 
 
 @dataclass(frozen=True)
@@ -70,6 +71,7 @@ class BacklashReport:
     output: str
     meshes: tuple[MeshBacklash, ...]
     meshes_without_backlash: tuple[tuple[Any, Any], ...]
+    model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
     def worst_case(self) -> float:
@@ -81,7 +83,27 @@ class BacklashReport:
         """√Σ (S_k·play_k)² (arcmin at the output)."""
         return math.sqrt(math.fsum(m.output_arcmin ** 2 for m in self.meshes))
 
+    def text_report(self) -> str:
+        """The readable report ``powergraph backlash`` prints."""
+        from powergraph.analyses.backlash.report import report_text
+
+        return report_text(self.model, self)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Lost-motion terms of every pair with a ``backlash:`` block, as stacked bars
+        (delegates, lazily, to :func:`powergraph.plot.backlash.plot_lost_motion`)."""
+        pairs = {f"{a}-{b}": m.pair for m in self.meshes if m.pair is not None
+                 for a, b in [m.raw_between]}
+        if not pairs:
+            raise nothing_to_draw(self, "no mesh has a backlash: block (only "
+                                  "backlash_arcmin)")
+        from powergraph.plot.backlash import plot_lost_motion
+
+        return plot_lost_motion(pairs, ax=ax, **kwargs)
+
     def to_dict(self) -> dict:
+        """``{name, output, meshes, meshes_without_backlash, output_lost_motion_arcmin:
+        {worst_case, rss}}`` (arc-minutes at the output)."""
         return {"name": self.name, "output": self.output,
                 "meshes": [m.to_dict() for m in self.meshes],
                 "meshes_without_backlash": [list(p) for p in self.meshes_without_backlash],
@@ -157,7 +179,7 @@ def analyse_backlash(model: Model, output: str | int | None = None) -> BacklashR
         raise ModelError("no mesh carries backlash: or backlash_arcmin:, so there is no lost "
                          "motion to compute", "links")
     return BacklashReport(name=model.name, output=target, meshes=tuple(meshes),
-                          meshes_without_backlash=tuple(without))
+                          meshes_without_backlash=tuple(without), model=model)
 
 
 def _play(model: Model, link: Link) -> tuple[float, PairBacklash | None, str] | None:

@@ -1,6 +1,6 @@
-"""The paper's study (seeds/003 §4–5): maximum fluctuation over a grid, refitted.
+"""The paper's study (Csobán 2021): maximum fluctuation over a grid, refitted.
 
-Grid (paper Table 3, REFERENCE §E): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3, rc* = 1, and ``d``
+Grid (paper Table 3, tests/data/reference_values.md (Csobán 2021)): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3, rc* = 1, and ``d``
 half the ISO 286 tolerance IT5…IT9 of the pitch diameter ``m·z1``; gears with a pitch
 diameter above 500 mm are left out (the paper drops m = 5, z1 = 117). The maxima are fitted
 by least squares with the paper's surface ``Δi = a·d + b·d·z1^−1.5`` (Δi in %, d in mm).
@@ -13,6 +13,7 @@ import numpy as np
 from scipy.linalg import lstsq
 
 from powergraph.analyses.cycloid.fluctuation import cycloid_fluctuation
+from powergraph.analyses.cycloid.report import study_text
 from powergraph.analyses.cycloid.tolerance import (GRADES, LARGEST_SIZE,
                                                    profile_error_for_grade)
 from powergraph.errors import UsageError
@@ -69,6 +70,17 @@ class FluctuationStudy:
         if self.paper_a is None:
             return np.full(np.broadcast(profile_error, teeth).shape, np.nan)
         return surface(self.paper_a, self.paper_b, profile_error, teeth)
+
+    def text_report(self) -> str:
+        """The readable report (what the command line prints)."""
+        return study_text(self)
+
+    def plot(self, ax=None, **kwargs):
+        """Max deviation against the profile error (delegates, lazily, to
+        :func:`powergraph.plot.cycloid.plot_fluctuation_study`)."""
+        from powergraph.plot.cycloid import plot_fluctuation_study
+
+        return plot_fluctuation_study(self, ax=ax, **kwargs)
 
     def to_dict(self) -> dict:
         """Plain data for ``--json``."""

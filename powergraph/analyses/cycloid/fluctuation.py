@@ -1,4 +1,4 @@
-"""Transmission fluctuation of one cycloid stage with a profile error (seeds/003)."""
+"""Transmission fluctuation of one cycloid stage with a profile error (Csobán 2021)."""
 from __future__ import annotations
 
 import math
@@ -8,6 +8,7 @@ import numpy as np
 
 from powergraph.analyses.cycloid.contact import contact_curve, handovers
 from powergraph.analyses.cycloid.geometry import CycloidGeometry, cycloid_geometry
+from powergraph.analyses.cycloid.report import stage_text
 from powergraph.errors import UsageError
 
 #: Samples of the crank angle per contact segment (a segment is 2π/z2 of crank angle).
@@ -81,7 +82,7 @@ class CycloidFluctuation:
 
     @property
     def large_teeth_limit_percent(self) -> float:
-        """``100π·d/(e·z2)``: the maximum deviation as ``z1 → ∞`` (REFERENCE §E)."""
+        """``100π·d/(e·z2)``: the maximum deviation as ``z1 → ∞`` (tests/data/reference_values.md (Csobán 2021))."""
         g = self.geometry
         return 100.0 * math.pi * self.profile_error / (g.eccentricity * g.pins)
 
@@ -106,6 +107,17 @@ class CycloidFluctuation:
                              np.concatenate([[lo], unwrapped[inside], [hi]]),
                              np.concatenate([[after], ratio[inside], [before]])))
         return segments
+
+    def text_report(self) -> str:
+        """The readable report (what the command line prints)."""
+        return stage_text(self)
+
+    def plot(self, ax=None, **kwargs):
+        """Ratio against crank angle (delegates, lazily, to
+        :func:`powergraph.plot.cycloid.plot_ratio_fluctuation`)."""
+        from powergraph.plot.cycloid import plot_ratio_fluctuation
+
+        return plot_ratio_fluctuation(self, ax=ax, **kwargs)
 
     def to_dict(self) -> dict:
         """Plain data for ``--json``."""

@@ -1,4 +1,4 @@
-"""A cycloid stage's ratio fluctuation carried to the output of a whole train (issue 7.4).
+"""A cycloid stage's ratio fluctuation carried to the output of a whole train (docs/cycloid.md).
 
 Derivation. In the stage analysis the pins (ring ``b``) are the reference, the crank ``c``
 turns by ``θ`` and the disc by ``ψ(θ)``, so ``w_disc − w_ring = ρ(θ)·u`` with
@@ -35,8 +35,10 @@ import numpy as np
 from powergraph.analyses.cycloid.contact import contact_curve
 from powergraph.analyses.cycloid.fluctuation import (CycloidFluctuation, read_only,
                                                      cycloid_fluctuation, deviation_percent)
+from powergraph.analyses.cycloid.report import train_text
 from powergraph.errors import ModelError, UsageError
 from powergraph.kinematics import solve_speeds, willis_ratio
+from powergraph.result import nothing_to_draw
 
 #: Samples of the input angle per period of the stage's fluctuation (at least 360 in all).
 SAMPLES_PER_PERIOD = 32
@@ -108,6 +110,14 @@ class TrainFluctuation:
     output: str
     ratio_nominal: float
     stages: tuple[StageAtOutput, ...]
+
+    def text_report(self) -> str:
+        """The readable report (what the command line prints)."""
+        return train_text(self)
+
+    def plot(self, ax=None, **kwargs):
+        """Nothing to draw: raises :class:`~powergraph.result.NothingToDrawError`."""
+        raise nothing_to_draw(self, "plot each stage's cycloid_fluctuation result")
 
     def to_dict(self) -> dict:
         """Plain data for ``solve --json`` (key ``cycloid_fluctuation``)."""

@@ -182,6 +182,18 @@ class FormulaResult:
                 "efficiency": display(self.efficiency, latex=True, symbol_names=names),
                 "conditions": [c.latex(names) for c in self.conditions]}
 
+    def text_report(self) -> str:
+        """The readable report ``powergraph formula`` prints."""
+        from powergraph.analyses.formula.report import text_report
+
+        return text_report(self)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Nothing to draw: raises :class:`~powergraph.result.NothingToDrawError`."""
+        from powergraph.result import nothing_to_draw
+
+        raise nothing_to_draw(self, "evaluate the formulas (lambdify) and plot the values")
+
     def to_dict(self) -> dict[str, Any]:
         """The ``powergraph formula --json`` object."""
         names = latex_names(self.symbols, self.info)

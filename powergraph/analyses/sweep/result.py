@@ -159,6 +159,28 @@ class SweepResult:
             _write_csv(handle, columns)
         return None
 
+    def text_report(self) -> str:
+        """One line: variants, self-locking and unsolved counts."""
+        unsolved = {k: v for k, v in self.status_counts().items() if k != "ok"}
+        text = (f"{self.name}: {self.size:,} variants, "
+                f"{int(self.self_locking.sum()):,} self-locking")
+        if unsolved:
+            text += ", not solved: " + ", ".join(f"{v:,} {k}" for k, v in unsolved.items())
+        return text
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Efficiency (%) against the first swept path, one curve per value of the others
+        (delegates, lazily, to :func:`powergraph.plot.sweep.curve_plot`)."""
+        from powergraph.plot.sweep import curve_plot
+
+        x_path, curves = self.curves()
+        x, eta = self.parameters[x_path].ravel(), 100 * self.efficiency.ravel()
+        kwargs.setdefault("xlabel", x_path)
+        kwargs.setdefault("title", f"{self.name}: sweep by the virtual-power method")
+        kwargs.setdefault("zero_line", "self-locking below 0")
+        return curve_plot({label: (x[i], eta[i]) for label, i in curves.items()},
+                          ylabel="efficiency [%]", ax=ax, **kwargs)
+
     def to_dict(self) -> dict[str, Any]:
         """Plain lists (JSON-ready except NaN): parameters, results, flags, losses."""
         flat = lambda a: np.ravel(a).tolist()  # noqa: E731

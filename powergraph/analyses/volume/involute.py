@@ -210,7 +210,22 @@ class ProfileErrorTable:
     pitch_area: tuple[float, ...]
     relative_error: tuple[float, ...]
 
+    def text_report(self) -> str:
+        """One line per tooth number: areas per m² and the pitch-circle error."""
+        lines = [f"{'z':>4}  {'exact mm²/m²':>14}  {'pitch mm²/m²':>14}  {'error':>9}"]
+        lines += [f"{z:>4}  {e:>14.4f}  {p:>14.4f}  {100 * r:>+8.3f}%" for z, e, p, r
+                  in zip(self.teeth, self.exact_area, self.pitch_area, self.relative_error)]
+        return "\n".join(lines)
+
+    def plot(self, ax=None, **kwargs):
+        """The error against the tooth number (delegates, lazily, to
+        :func:`powergraph.plot.volume.pitch_circle_error_plot`)."""
+        from powergraph.plot.volume import pitch_circle_error_plot
+
+        return pitch_circle_error_plot(self.teeth, self.relative_error, ax=ax, **kwargs)
+
     def to_dict(self) -> dict:
+        """``{teeth, exact_area_mm2_per_m2, pitch_area_mm2_per_m2, relative_error}``."""
         return {"teeth": list(self.teeth), "exact_area_mm2_per_m2": list(self.exact_area),
                 "pitch_area_mm2_per_m2": list(self.pitch_area),
                 "relative_error": list(self.relative_error)}

@@ -4,6 +4,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from powergraph.result import aligned_table, nothing_to_draw
+
 #: Unit of :func:`power_density`: kilowatt per litre (1 kW/L = 1 W/cm³ = 1e-3 W/mm³).
 POWER_DENSITY_UNIT = "kW/L"
 
@@ -96,6 +98,33 @@ class VolumeResult:
     def power_density(self, output_power_w: float) -> float:
         """Output power / total volume in kW/L (see :func:`power_density`)."""
         return power_density(output_power_w, self.total_mm3)
+
+    def text_report(self) -> str:
+        """Aligned text table: one row per component, then the total."""
+        header = ("id", "name", "shape", "eq.", "count", "each mm³", "volume mm³",
+                  "exact outline mm³", "circle error")
+        rows = [header]
+        for cid, part in self.components.items():
+            rows.append((cid, part.name or "", part.shape, part.equation, str(part.count),
+                         f"{part.unit_mm3:,.1f}", f"{part.volume_mm3:,.1f}",
+                         "" if part.exact_mm3 is None else f"{part.exact_mm3:,.1f}",
+                         "" if part.profile_error is None
+                         else f"{100 * part.profile_error:+.3f} %"))
+        rows.append(("", "total (Eq. 8)", "", "", "", "", f"{self.total_mm3:,.1f}",
+                     f"{self.total_exact_profile_mm3:,.1f}", ""))
+        lines = [f"{self.name}: volume by Pan & Wang (2019), lengths in mm"]
+        lines += aligned_table(rows, {4, 5, 6, 7, 8}, rules_after=(0, len(rows) - 2))
+        lines.append(f"total: {self.total_mm3:,.1f} mm³ = {self.total_litres:.4f} L")
+        if any(part.exact_mm3 is not None for part in self.components.values()):
+            lines.append("exact outline: gears and cycloid discs with their generated profile "
+                         "(other parts as the paper);")
+            lines.append("circle error: (paper − exact) / exact")
+        return "\n".join(lines)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Nothing to draw: raises :class:`~powergraph.result.NothingToDrawError`."""
+        raise nothing_to_draw(self, "plot pitch_circle_errors(...) for the volume error "
+                                    "of the pitch-circle formula")
 
     def to_dict(self) -> dict[str, Any]:
         """``{components: {id: volume_mm3}, total_mm3, ...}`` plus per-part details."""

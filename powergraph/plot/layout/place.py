@@ -1,10 +1,10 @@
-"""Coordinates, arrow paths and label spots for a :class:`Skeleton` (see flow_layout).
+"""Coordinates, arrow paths and label spots for a :class:`Skeleton` (see :mod:`powergraph.plot.layout.layout`).
 
 Examples
 --------
 >>> import powergraph as pg
->>> from powergraph.analyses.flow_view import flow_view
->>> from powergraph.analyses.flow_layout import skeleton_of
+>>> from powergraph.plot.layout.view import flow_view
+>>> from powergraph.plot.layout.layout import skeleton_of
 >>> view = flow_view(pg.solve(pg.load_model("models/rv40e.yaml")))   # doctest: +SKIP
 >>> place(view, skeleton_of(view)).clean                              # doctest: +SKIP
 True
@@ -15,13 +15,13 @@ from typing import Mapping
 
 import numpy as np
 
-from powergraph.analyses.flow_geometry import (
+from powergraph.plot.layout.geometry import (
     CURVE4, MOVETO, Box, Shape, TextSize, bezier_chain, bounds, estimate_text_size, head_box,
     label_candidates, node_shape, place_label, port, port_offsets, sample, segments,
     straight, stub_candidates)
-from powergraph.analyses.flow_layout import (EdgeRoute, FlowLayout, LayoutStyle, NodePlace,
+from powergraph.plot.layout.layout import (EdgeRoute, FlowLayout, LayoutStyle, NodePlace,
                                              Skeleton)
-from powergraph.analyses.flow_view import FlowView
+from powergraph.plot.layout.view import FlowView
 
 #: Padding (points) around a label's text: the plot draws its white box this far out.
 LABEL_PAD = 1.5
@@ -53,7 +53,7 @@ def place(view: FlowView, skeleton: Skeleton, text_size: TextSize = estimate_tex
     return _labelled(view, skeleton, nodes, paths, sizes, style, spread)
 
 
-# --- rows: y of every node (step 4 of flow_layout) ---------------------------------------
+# --- rows: y of every node (step 4 of the layout) ---------------------------------------
 def rows(skeleton: Skeleton, extents: Mapping[str, tuple[float, float]],
          weights: Mapping[tuple[str, str], float], gap: float, sweeps: int = 30) -> dict:
     """y of every node: pulled towards its neighbours, at least ``gap`` apart.

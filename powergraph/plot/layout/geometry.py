@@ -1,6 +1,6 @@
 """Shapes, routes and label spots of a power-flow diagram (pure numpy, in points).
 
-Used by :mod:`powergraph.analyses.flow_layout`; nothing here draws. Coordinates are
+Used by :mod:`powergraph.plot.layout.layout`; nothing here draws. Coordinates are
 typographic points (1/72 inch) so that text sizes, measured or estimated, are in the
 same unit as the positions; y grows upwards.
 

@@ -1,6 +1,6 @@
 """Layout of a power-flow diagram that follows the power (pure numpy/networkx).
 
-The nodes of a :class:`~powergraph.analyses.flow_view.FlowView` are put in layers by flow
+The nodes of a :class:`~powergraph.plot.layout.view.FlowView` are put in layers by flow
 order, motor on the left and generator on the right (a Sugiyama layout):
 
 1. **Cycles broken deterministically.** Arrows are taken from the strongest down; one
@@ -26,7 +26,7 @@ Coordinates are points (1/72 in); draw at 1 data unit = 1 pt (or scale the fonts
 Examples
 --------
 >>> import powergraph as pg
->>> from powergraph.analyses.flow_view import flow_view
+>>> from powergraph.plot.layout.view import flow_view
 >>> result = pg.solve(pg.load_model("models/rv40e.yaml"))            # doctest: +SKIP
 >>> layout = layout_flow(flow_view(result))                           # doctest: +SKIP
 >>> layout.nodes["motor"].x < layout.nodes["2/3"].x < layout.nodes["generator"].x  # doctest: +SKIP
@@ -40,9 +40,9 @@ from typing import Mapping
 import networkx as nx
 import numpy as np
 
-from powergraph.analyses.flow_geometry import (Box, Shape, TextSize, estimate_text_size,
+from powergraph.plot.layout.geometry import (Box, Shape, TextSize, estimate_text_size,
                                                head_polygon, trim_end)
-from powergraph.analyses.flow_view import FlowView
+from powergraph.plot.layout.view import FlowView
 from powergraph.statics.flow import LOSS, Flow
 
 
@@ -180,7 +180,7 @@ def layout_flow(view: FlowView, text_size: TextSize = estimate_text_size,
         one, the default estimates generously.
     style : LayoutStyle, optional
     """
-    from powergraph.analyses.flow_place import place
+    from powergraph.plot.layout.place import place
 
     skeleton = skeleton_of(view)
     layout = None

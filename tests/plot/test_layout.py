@@ -1,4 +1,4 @@
-"""Layout of power-flow diagrams (powergraph.analyses.flow_*): no matplotlib here.
+"""Layout of power-flow diagrams (powergraph.plot.layout): no matplotlib here.
 
 The layout must follow the power (motor left, generator right, every arrow that carries
 power pointing rightwards unless it lies on a circulating loop), keep labels clear of
@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 
 import powergraph as pg
-from powergraph.analyses.flow_geometry import (CURVE4, Box, bezier_chain, head_polygon,
+from powergraph.plot.layout.geometry import (CURVE4, Box, bezier_chain, head_polygon,
                                                place_label, sample, trim_end)
-from powergraph.analyses.flow_layout import layout_flow, skeleton_of
-from powergraph.analyses.flow_place import _project
-from powergraph.analyses.flow_view import flow_view, format_power, format_share, loop_edges
+from powergraph.plot.layout.layout import layout_flow, skeleton_of
+from powergraph.plot.layout.place import _project
+from powergraph.plot.layout.view import flow_view, format_power, format_share, loop_edges
 from powergraph.errors import UsageError
 from powergraph.model import loads_model
 from powergraph.statics.flow import Flow
@@ -257,10 +257,10 @@ def test_same_layout_in_other_processes() -> None:
     """String hashing changes between processes; the layout must not."""
     code = ("import sys, powergraph as pg\n"
             "from powergraph.model import loads_model\n"
-            "from powergraph.analyses.flow_view import flow_view\n"
-            "from powergraph.analyses.flow_layout import layout_flow\n"
+            "from powergraph.plot.layout.view import flow_view\n"
+            "from powergraph.plot.layout.layout import layout_flow\n"
             f"sys.path.insert(0, {str(Path(__file__).parent)!r})\n"
-            "import test_flow_layout as t\n"
+            "import test_layout as t\n"
             "r = pg.solve(loads_model(t.CLOSED_DIFFERENTIAL))\n"
             "print(t._digest(layout_flow(flow_view(r))), "
             "t._digest(layout_flow(flow_view(r, 'c'))))\n")

@@ -1,4 +1,4 @@
-"""Wang (2021)'s method and the virtual-power method side by side (DESIGN §3–4).
+"""Wang (2021)'s method and the virtual-power method side by side (docs/wang2021.md).
 
 For the RV-40E with every mesh at 0.94 the paper's method gives 88.2 % and the
 virtual-power method 28.7 %: Eq. (14) applies the cycloid–pin mesh's basic efficiency to
@@ -21,8 +21,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from powergraph.methods.wang2021 import Wang2021Result, solve_wang2021
+from powergraph.methods.tuning import lossless_cycloid_power
+from powergraph.methods.wang2021 import Wang2021Result, paper_equations, solve_wang2021
 from powergraph.model.spec import Model
+from powergraph.result import nothing_to_draw
 from powergraph.statics.result import PowerFlowResult
 
 
@@ -30,15 +32,17 @@ from powergraph.statics.result import PowerFlowResult
 class MethodComparison:
     """Both methods on one model, and the equivalent cycloid-mesh efficiency.
 
-    ``lossless_virtual_power`` is the power the cycloid–pin mesh passes in the crank's
+    ``rigorous`` is the virtual-power method's solve of the same model.
+
+    ``lossless_carrier_frame_power`` is the power the cycloid–pin mesh passes in the crank's
     frame with ideal meshes (about 39 × P for the RV-40E); ``paper_cycloid_power`` the
     power Eq. (14) applies η2 to (``P + U − L1``).
     """
 
     paper: Wang2021Result = field(repr=False)
-    virtual_power: PowerFlowResult = field(repr=False)
+    rigorous: PowerFlowResult = field(repr=False)
     equivalent_cycloid_efficiency: float | None
-    lossless_virtual_power: float
+    lossless_carrier_frame_power: float
 
     @property
     def paper_efficiency(self) -> float:
@@ -46,7 +50,7 @@ class MethodComparison:
 
     @property
     def virtual_power_efficiency(self) -> float:
-        return self.virtual_power.efficiency
+        return self.rigorous.efficiency
 
     @property
     def paper_losses(self) -> tuple[float, float]:
@@ -57,30 +61,38 @@ class MethodComparison:
     def virtual_power_losses(self) -> tuple[float, float]:
         """(first-stage mesh loss, cycloid–pin mesh loss) by the virtual-power method."""
         roles = self.paper.roles
-        return (self.virtual_power.element(roles.first_mesh).loss,
-                self.virtual_power.element(roles.cycloid_mesh).loss)
+        return (self.rigorous.element(roles.first_mesh).loss,
+                self.rigorous.element(roles.cycloid_mesh).loss)
 
     @property
     def paper_cycloid_power(self) -> float:
         return self.paper.equations.cycloid_power
 
     @property
-    def cycloid_virtual_power(self) -> float:
+    def cycloid_carrier_frame_power(self) -> float:
         """Power the cycloid–pin mesh passes in the crank's frame (virtual-power solve)."""
-        return self.virtual_power.element(self.paper.roles.cycloid_mesh).virtual_power
+        return self.rigorous.element(self.paper.roles.cycloid_mesh).carrier_frame_power
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Nothing to draw: raises :class:`~powergraph.result.NothingToDrawError`."""
+        raise nothing_to_draw(self, "plot .paper or .rigorous (power-flow diagrams)")
 
     def to_dict(self) -> dict[str, Any]:
+        """``{name, input_power, wang2021: {...}, virtual_power: {...},
+        equivalent_cycloid_efficiency}``: ``virtual_power`` holds the virtual-power
+        *method*'s numbers; its ``cycloid_mesh_power`` is the cycloid–pin mesh's power in
+        the crank's frame."""
         return {"name": self.paper.name, "input_power": self.paper.input_power,
                 "wang2021": {"efficiency": self.paper_efficiency,
                              "losses": list(self.paper_losses),
                              "cycloid_mesh_power": self.paper_cycloid_power},
                 "virtual_power": {"efficiency": self.virtual_power_efficiency,
                                   "losses": list(self.virtual_power_losses),
-                                  "cycloid_mesh_power": self.cycloid_virtual_power,
-                                  "lossless_cycloid_mesh_power": self.lossless_virtual_power},
+                                  "cycloid_mesh_power": self.cycloid_carrier_frame_power,
+                                  "lossless_cycloid_mesh_power": self.lossless_carrier_frame_power},
                 "equivalent_cycloid_efficiency": self.equivalent_cycloid_efficiency}
 
-    def text_table(self) -> str:
+    def text_report(self) -> str:
         """A small side-by-side table (powers in W)."""
         p1, p2 = self.paper_losses
         v1, v2 = self.virtual_power_losses
@@ -91,25 +103,10 @@ class MethodComparison:
                 f"{'L1, first-stage mesh (W)':<34}{p1:>14.4f}{v1:>16.4f}",
                 f"{'L2, cycloid-pin mesh (W)':<34}{p2:>14.4f}{v2:>16.4f}",
                 f"{'power eta2 is applied to (W)':<34}{self.paper_cycloid_power:>14.4f}"
-                f"{self.cycloid_virtual_power:>16.4f}",
+                f"{self.cycloid_carrier_frame_power:>16.4f}",
                 "equivalent cycloid-mesh efficiency: "
                 + (f"{eq:.6f}" if eq is not None else "none in (0.01, 1]")]
         return "\n".join(rows)
-
-
-def lossless_cycloid_power(model: Model, cycloid_mesh: int) -> float:
-    """Power the cycloid–pin mesh passes in its carrier's frame with ideal meshes (W).
-
-    Examples
-    --------
-    >>> from powergraph.model import load_model
-    >>> rv40e = load_model("models/rv40e.yaml")                          # doctest: +SKIP
-    >>> round(lossless_cycloid_power(rv40e, 1) / 2270, 4)               # doctest: +SKIP
-    38.6777
-    """
-    from powergraph.statics import solve
-
-    return solve(model.with_mesh_efficiency(1.0)).element(cycloid_mesh).virtual_power
 
 
 def equivalent_cycloid_efficiency(model: Model, target: float | None = None) -> float:
@@ -145,7 +142,6 @@ def equivalent_cycloid_efficiency(model: Model, target: float | None = None) -> 
     """
     from powergraph.methods.rv_roles import find_rv_roles
     from powergraph.methods.tuning import efficiency_for
-    from powergraph.methods.wang2021 import paper_equations
 
     roles = find_rv_roles(model)
     if target is None:
@@ -169,7 +165,7 @@ def compare_methods(model: Model) -> MethodComparison:
     --------
     >>> from powergraph.model import load_model
     >>> c = compare_methods(load_model("models/rv40e.yaml"))   # doctest: +SKIP
-    >>> print(c.text_table())                                  # doctest: +SKIP
+    >>> print(c.text_report())                                  # doctest: +SKIP
                                          Wang (2021)   virtual power
     efficiency                              0.882062        0.287376
     L1, first-stage mesh (W)                136.2000        135.0744
@@ -186,7 +182,7 @@ def compare_methods(model: Model) -> MethodComparison:
         equivalent: float | None = equivalent_cycloid_efficiency(model, paper.efficiency)
     except SolveError:
         equivalent = None
-    return MethodComparison(paper=paper, virtual_power=vp,
+    return MethodComparison(paper=paper, rigorous=vp,
                             equivalent_cycloid_efficiency=equivalent,
-                            lossless_virtual_power=lossless_cycloid_power(
+                            lossless_carrier_frame_power=lossless_cycloid_power(
                                 model, paper.roles.cycloid_mesh))
