@@ -1,7 +1,11 @@
 """Shared fixtures: paths, model loading from text, and the conservation check."""
 from __future__ import annotations
 
+import os
 from pathlib import Path
+
+# The library chooses no matplotlib backend; the test session draws off-screen.
+os.environ.setdefault("MPLBACKEND", "Agg")
 
 import pytest
 

@@ -1,0 +1,191 @@
+"""Every analysis result offers one interface: :class:`powergraph.result.Result`.
+
+``to_dict()`` must be JSON (strict: no NaN), ``text_report()`` a non-empty str, and
+``plot(ax=...)`` must draw on the given axes and return it — or, for a result with no
+picture, raise :class:`~powergraph.result.NothingToDrawError` (a PowerGraphError).
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import powergraph as pg
+from powergraph.errors import PowerGraphError
+from powergraph.result import NothingToDrawError, Result
+from powergraph.testing import assert_conservation
+
+MODELS = Path(__file__).resolve().parents[1] / "models"
+
+
+def _solved(name: str):
+    result = pg.solve(pg.load_model(MODELS / name))
+    assert_conservation(result)
+    return result
+
+
+def _power_flow():
+    return _solved("rv40e.yaml")
+
+
+def _wang2021():
+    from powergraph.methods import solve_wang2021
+
+    result = solve_wang2021(pg.load_model(MODELS / "rv40e.yaml"))
+    assert_conservation(result.virtual_power_result)
+    assert_conservation(result.realisation)
+    return result
+
+
+def _method_comparison():
+    from powergraph.methods import compare_methods
+
+    comparison = compare_methods(pg.load_model(MODELS / "rv40e.yaml"))
+    assert_conservation(comparison.rigorous)
+    return comparison
+
+
+def _figure():
+    from powergraph.methods.figures import cycloid_ratio_curves
+
+    return cycloid_ratio_curves(pg.load_model(MODELS / "rv40e.yaml"), z5_values=[30, 40])
+
+
+def _comparison_table():
+    from powergraph.analyses.compare import compare_models
+
+    return compare_models([pg.load_model(MODELS / "planetary_2kh_sun_to_carrier.yaml"),
+                           pg.load_model(MODELS / "wolfrom_3k.yaml")])
+
+
+def _backlash():
+    from powergraph.analyses.backlash import analyse_backlash
+
+    return analyse_backlash(pg.load_model(MODELS / "backlash_li2012.yaml"))
+
+
+def _backlash_pair():
+    return _backlash().meshes[0].pair
+
+
+def _centre_distance():
+    from powergraph.analyses.backlash import centre_distance_curve
+
+    return centre_distance_curve(2.5, 0.025, 0.018, 45, 40)
+
+
+def _cycloid_stage():
+    from powergraph.analyses.cycloid import cycloid_fluctuation
+
+    return cycloid_fluctuation(module=1, teeth=9, profile_error=0.01)
+
+
+def _cycloid_study():
+    from powergraph.analyses.cycloid import fluctuation_study
+
+    return fluctuation_study(1.0)
+
+
+def _cycloid_train():
+    from powergraph.analyses.cycloid import train_fluctuation
+
+    return train_fluctuation(pg.load_model(MODELS / "rv40e_profile_error.yaml"))
+
+
+def _volume():
+    from powergraph.analyses.volume import volume
+
+    return volume(pg.load_model(MODELS / "rv40e.yaml"))
+
+
+def _pitch_circle_errors():
+    from powergraph.analyses.volume import pitch_circle_errors
+
+    return pitch_circle_errors([17, 30, 60])
+
+
+def _sweep():
+    from powergraph.analyses.sweep import sweep
+
+    return sweep(pg.load_model(MODELS / "rv40e.yaml"),
+                 {"links.1.efficiency": [0.94, 0.97, 0.998]}, quiet=True)
+
+
+def _formula():
+    from powergraph.analyses.formula import derive_formulas
+
+    return derive_formulas(pg.load_model(MODELS / "planetary_2kh_sun_to_carrier.yaml"))
+
+
+#: (name, builder, has a picture)
+RESULTS = [
+    ("PowerFlowResult", _power_flow, True),
+    ("Wang2021Result", _wang2021, True),
+    ("MethodComparison", _method_comparison, False),
+    ("FigureData", _figure, True),
+    ("ComparisonTable", _comparison_table, True),
+    ("BacklashReport", _backlash, True),
+    ("PairBacklash", _backlash_pair, True),
+    ("CentreDistanceCurve", _centre_distance, True),
+    ("CycloidFluctuation", _cycloid_stage, True),
+    ("FluctuationStudy", _cycloid_study, True),
+    ("TrainFluctuation", _cycloid_train, False),
+    ("VolumeResult", _volume, False),
+    ("ProfileErrorTable", _pitch_circle_errors, True),
+    ("SweepResult", _sweep, True),
+    ("FormulaResult", _formula, False),
+]
+
+
+@pytest.fixture(scope="module", params=RESULTS, ids=[name for name, _, _ in RESULTS])
+def case(request):
+    name, build, draws = request.param
+    return name, build(), draws
+
+
+def test_is_a_result(case) -> None:
+    name, result, _ = case
+    assert type(result).__name__ == name
+    assert isinstance(result, Result)
+
+
+def test_to_dict_is_strict_json(case) -> None:
+    _, result, _ = case
+    data = result.to_dict()
+    assert isinstance(data, dict) and data
+    text = json.dumps(data, allow_nan=False)
+    assert json.loads(text) == json.loads(json.dumps(data))
+
+
+def test_text_report_is_text(case) -> None:
+    _, result, _ = case
+    report = result.text_report()
+    assert isinstance(report, str) and report.strip()
+
+
+def test_plot_draws_on_the_given_axes_or_says_why_not(case) -> None:
+    from matplotlib.figure import Figure
+
+    _, result, draws = case
+    name = type(result).__name__
+    projection = "3d" if name == "FluctuationStudy" else None
+    ax = Figure().add_subplot(projection=projection)
+    if draws:
+        assert result.plot(ax=ax) is ax
+        assert ax.has_data() or ax.patches or ax.texts
+    else:
+        with pytest.raises(NothingToDrawError, match="nothing to draw") as info:
+            result.plot(ax=ax)
+        assert isinstance(info.value, PowerGraphError)
+
+
+def test_an_object_without_the_methods_is_not_a_result() -> None:
+    class Partial:
+        def to_dict(self) -> dict:
+            return {}
+
+        def text_report(self) -> str:
+            return ""
+
+    assert not isinstance(Partial(), Result)
