@@ -1,5 +1,19 @@
 """powergraph: power flow, losses and efficiency of gear trains described as graphs.
 
+The top level holds the core: :func:`load_model`, :func:`model_from_dict`, :func:`solve`,
+:func:`solve_speeds`, the errors, and :class:`Result` (the interface every result offers).
+Each other feature has one import path:
+
+- paper methods: :mod:`powergraph.methods` (Wang 2021);
+- analyses: :mod:`powergraph.analyses.sweep`, :mod:`~powergraph.analyses.formula`,
+  :mod:`~powergraph.analyses.backlash`, :mod:`~powergraph.analyses.cycloid`,
+  :mod:`~powergraph.analyses.volume`, :mod:`~powergraph.analyses.compare`;
+- drawing: :mod:`powergraph.plot`; test helpers: :mod:`powergraph.testing`.
+
+This module is a facade of the base layer: at import it loads only the errors and the
+result protocol; the core functions are imported on first use, so ``import powergraph``
+stays cheap for the command line.
+
 Examples
 --------
 >>> import powergraph as pg
@@ -19,11 +33,12 @@ from powergraph.errors import (
     StaticsError,
     UsageError,
 )
+from powergraph.result import NothingToDrawError, Result
 
 __all__ = [
     "PowerGraphError", "ModelError", "KinematicsError", "StaticsError", "SolveError",
-    "MethodNotApplicableError", "UsageError", "load_model", "model_from_dict", "solve",
-    "solve_speeds",
+    "MethodNotApplicableError", "UsageError", "NothingToDrawError", "Result", "load_model",
+    "model_from_dict", "solve", "solve_speeds",
 ]
 __version__ = "0.1.0"
 

@@ -10,7 +10,7 @@ Writes, for the model (default the RV-40E):
 - ``fig12_equivalent_cycloid_efficiency``: the cycloid–pin efficiency at which the
   virtual-power method gives the paper's η;
 - ``fig13_ratio_cycloid_teeth``: η against the ratio, z5 varied with z4 = z5 − 1, with a
-  zoom on the paper's curve (it rises: REFERENCE §A);
+  zoom on the paper's curve (it rises: tests/data/reference_values.md);
 - ``fig13_ratio_first_stage``: η against the ratio, z2/z1 varied.
 
 Each figure carries its caption; the captions are also printed.
@@ -25,17 +25,19 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _figure(name: str, data):
-    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure   # files only: no pyplot, no backend chosen
 
     from powergraph.plot.wang2021 import add_caption, plot_figure, plot_paper_trend
 
     if name == "fig13_ratio_cycloid_teeth":
-        figure, (left, right) = plt.subplots(1, 2, figsize=(11.5, 4.4))
+        figure = Figure(figsize=(11.5, 4.4))
+        left, right = figure.subplots(1, 2)
         plot_figure(data, ax=left, marks=False)
         plot_paper_trend(data, ax=right)
         figure.subplots_adjust(wspace=0.3, left=0.07, right=0.98)
     else:
-        figure, ax = plt.subplots(figsize=(7.5, 4.6))
+        figure = Figure(figsize=(7.5, 4.6))
+        ax = figure.subplots()
         plot_figure(data, ax=ax)
     add_caption(figure, data.caption)
     return figure
@@ -47,7 +49,6 @@ def write_figures(model_path: str | Path, out_dir: str | Path) -> list[Path]:
     Returns the written paths.
     """
     import matplotlib
-    import matplotlib.pyplot as plt
 
     from powergraph.methods.figures import FIGURES
     from powergraph.model import load_model
@@ -63,7 +64,6 @@ def write_figures(model_path: str | Path, out_dir: str | Path) -> list[Path]:
             path = out / f"{name}{suffix}"
             figure.savefig(path, dpi=130, metadata=metadata)
             written.append(path)
-        plt.close(figure)
         print(f"{name}: {data.caption}\n")
     return written
 
