@@ -1,10 +1,17 @@
-"""Reproductions of the seed papers' own methods, beside the rigorous solver.
+"""Reproductions of published papers' own methods, beside the rigorous solver.
 
 - :mod:`powergraph.methods.wang2021`: Wang (2021)'s split/virtual power efficiency of an
-  RV reducer (``powergraph solve MODEL --method wang2021``);
-- :mod:`powergraph.methods.method_comparison`: that method and the virtual-power method side by
-  side, and the equivalent cycloid-mesh efficiency;
-- :mod:`powergraph.methods.figures`: the data of the paper's Figs. 12–13 by both methods.
+  RV reducer (``powergraph solve MODEL --method wang2021``), with its report
+  (:mod:`~powergraph.methods.wang2021_report`) and equations
+  (:mod:`~powergraph.methods.wang2021_equations`);
+- :mod:`powergraph.methods.method_comparison`: that method and the virtual-power method
+  side by side, and the equivalent cycloid-mesh efficiency (not to be confused with
+  :mod:`powergraph.analyses.compare`, the table of several trains);
+- :mod:`powergraph.methods.figures`: the data of the paper's Figs. 12–13 by both methods;
+- :mod:`powergraph.methods.tuning`: the mesh efficiency at which a solve meets a target.
+
+Inside the package the modules import one way only (roles, equations, tuning and
+report before ``wang2021``, and ``wang2021`` before ``method_comparison``).
 
 Imports are lazy so ``powergraph solve`` loads only what it uses.
 
