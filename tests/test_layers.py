@@ -15,8 +15,9 @@ Layers, earliest first (docs/architecture.md)::
 Only imports that run when a module is imported count: statements of the module body
 (also inside ``try``/``if``), but not ``if TYPE_CHECKING:`` blocks nor imports inside
 functions, which are lazy. Importing ``a.b.c`` also runs the packages ``a`` and ``a.b``
-first; those parent-package runs are not edges (each package's own imports are). The one sanctioned lazy crossing is a result's ``plot()``
-method importing its drawing function from :mod:`powergraph.plot`.
+first; those parent-package runs are not edges (each package's own imports are). The one
+sanctioned lazy crossing is a result's ``plot()`` method importing its drawing function
+from :mod:`powergraph.plot`.
 """
 from __future__ import annotations
 

@@ -14,7 +14,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                                         "torques, per-mesh virtual power and loss, "
                                         "and the efficiency.")
     parser.add_argument("model", help="model file (YAML)")
-    parser.add_argument("--json", action="store_true", help="print the JSON object (docs/format.md)")
+    parser.add_argument("--json", action="store_true",
+                        help="print the JSON object (docs/format.md)")
     parser.add_argument("--method", choices=METHODS, default="virtual-power",
                         help="virtual-power (default, any train) or wang2021 (the seed "
                              "paper's split/virtual power method, RV-type trains)")

@@ -65,10 +65,11 @@ def _meshes(result: "Wang2021Result") -> list[dict[str, Any]]:
 
 def result_to_dict(result: "Wang2021Result") -> dict[str, Any]:
     """The ``solve --json`` keys with the paper's numbers, then ``split_power`` (V),
-    ``virtual_power`` (the paper's U), ``losses`` ([L1, L2]), ``beta``, ``alpha``, and: ``roles``, ``equations`` (the
-    paper's equation per quantity), ``virtual_power_efficiency`` (rigorous η, same
-    file), ``split_flows`` (Fig. 5) and ``realised_efficiencies`` (the tuned basic
-    efficiencies behind ``flows``)."""
+    ``virtual_power`` (the paper's U), ``losses`` ([L1, L2]), ``beta``, ``alpha``, and:
+    ``roles``, ``equations`` (the paper's equation per quantity),
+    ``virtual_power_efficiency`` (rigorous η, same file), ``split_flows`` (Fig. 5) and
+    ``realised_efficiencies`` (the tuned basic efficiencies behind ``flows``). Per mesh,
+    ``virtual_power`` is the power the paper applies the mesh's efficiency to."""
     model = result.model
     tuned = result.realised_efficiencies
     return {

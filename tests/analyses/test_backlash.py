@@ -1,7 +1,8 @@
 """Backlash of internal involute pairs (Li et al. 2012; tests/data/reference_values.md) and
 the lost motion of whole trains (hand derivations).
 
-Expected values come from tests/data/reference_values.md (Li et al. 2012), the paper's printed Tables 2-3 and
+Expected values come from tests/data/reference_values.md (Li et al. 2012), the paper's
+printed Tables 2-3 and
 Conclusions, closed forms, or hand derivations written here -- never from the code.
 """
 from __future__ import annotations
@@ -78,7 +79,7 @@ def test_equivalent_shift_reproduces_the_measured_m(pairs, pair, gear, z, intern
 @pytest.mark.parametrize("pair,internal,external", [(1, 0.0192, -0.0179), (2, 0.0179, -0.0134)])
 def test_equivalent_shift_matches_reference_recomputation(pairs, pair, internal,
                                                           external) -> None:
-    # tests/data/reference_values.md (Li 2012): "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
+    # reference_values.md (Li 2012): "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
     # (printed in Table 3: 0.019 / -0.016 and 0.017 / -0.014).
     shift = pairs[pair].equivalent_shift
     assert shift[pairs[pair].internal] == pytest.approx(internal, abs=0.00005)
@@ -151,7 +152,8 @@ def test_standard_variant_is_the_tooth_thickness_condition(pairs, pair) -> None:
 
 
 def test_paper_variant_with_printed_shifts_is_reference() -> None:
-    # tests/data/reference_values.md (Li 2012): "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15 without tan α fed
+    # reference_values.md (Li 2012): "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15
+    # without tan α fed
     # with the printed shifts 0.019/-0.016 and 0.017/-0.014.
     from powergraph.analyses.backlash import no_backlash_centre_distance, working_pressure_angle
 

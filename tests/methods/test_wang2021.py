@@ -81,7 +81,8 @@ def test_rv40e_exact_values(rv40e) -> None:
                        ("L1", rv40e.losses[0]), ("L2", rv40e.losses[1]),
                        ("eta", rv40e.efficiency)):
         assert abs(value - RV40E_HAND[key]) < 1e-6, key
-    # tests/data/reference_values.md (Wang 2021) "exact" column, to its last printed digit (0.882061 is within 1e-6:
+    # reference_values.md (Wang 2021) "exact" column, to its last printed digit
+    # (0.882061 is within 1e-6:
     # the exact value is 0.88206154, so the column truncates).
     assert rv40e.split_power == pytest.approx(2211.7949, abs=0.5e-4)
     assert rv40e.paper_virtual_power == pytest.approx(58.20513, abs=0.5e-5)

@@ -150,7 +150,7 @@ def test_losses_are_the_same_in_every_frame() -> None:
 
 
 def test_rv_cycloid_mesh_rolls_n_plus_one_times_its_power() -> None:
-    """See docs/theory.md: in the crank's frame the cycloid-pin mesh passes (N + 1) = 40 × the power
+    """docs/theory.md: in the crank's frame the cycloid-pin mesh passes (N + 1) = 40 × the power
     it delivers to the cycloid: |w4 - w3| / |w4| with w3/w4 = z4/(z4 - z5) = -39 (Eq. 4)."""
     result = solve(load("rv40e.yaml").with_mesh_efficiency(1.0))
     mesh = result.element(1)

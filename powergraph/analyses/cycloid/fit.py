@@ -1,6 +1,7 @@
 """The paper's study (Csobán 2021): maximum fluctuation over a grid, refitted.
 
-Grid (paper Table 3, tests/data/reference_values.md (Csobán 2021)): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3, rc* = 1, and ``d``
+Grid (paper Table 3; tests/data/reference_values.md): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3,
+rc* = 1, and ``d``
 half the ISO 286 tolerance IT5…IT9 of the pitch diameter ``m·z1``; gears with a pitch
 diameter above 500 mm are left out (the paper drops m = 5, z1 = 117). The maxima are fitted
 by least squares with the paper's surface ``Δi = a·d + b·d·z1^−1.5`` (Δi in %, d in mm).

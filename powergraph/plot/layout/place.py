@@ -1,4 +1,6 @@
-"""Coordinates, arrow paths and label spots for a :class:`Skeleton` (see :mod:`powergraph.plot.layout.layout`).
+"""Coordinates, arrow paths and label spots for a :class:`Skeleton`.
+
+See :mod:`powergraph.plot.layout.layout` for the steps.
 
 Examples
 --------
