@@ -254,3 +254,58 @@ def _check(g: MeshGeometry) -> None:
         ok = math.isfinite(value) and low <= value <= high and not (low == 0.0 and value == 0)
         if not ok:
             raise ModelError(f"{name} must satisfy {rule.format(name)}, got {value!r}")
+
+
+#: Sum velocities below this (m/s) are taken at it: the fitted law diverges at rest
+#: (an assumption of this project, documented in docs/losses.md).
+MIN_SUM_VELOCITY = 0.1
+
+
+def iso14179_mu(tangential_force: float, face_width: float, pitch_speed: float,
+                geometry: MeshGeometry, viscosity: float, roughness: float,
+                lubricant_factor: float = 1.0) -> float:
+    """Mean coefficient of friction of a mesh by ISO/TR 14179-2 (Schlenk's fit).
+
+    ``μ = 0.048 · (F_bt/b / (v_Σc·ρ_redc))^0.2 · η_oil^−0.05 · Ra^0.25 · X_L``, with
+    ``F_bt`` the transverse load on the base circle (N), ``b`` the face width (mm),
+    ``v_Σc = 2 v_t sin α_wt`` the sum of the flanks' velocities at the pitch point (m/s),
+    ``ρ_redc`` the reduced transverse radius of curvature at the pitch point (mm),
+    ``η_oil`` the oil's dynamic viscosity (mPa·s) and ``Ra`` the mean roughness (µm).
+
+    Parameters
+    ----------
+    tangential_force : float
+        Tangential force at the working pitch circle, N (its magnitude is used).
+    face_width : float
+        Face width b, mm.
+    pitch_speed : float
+        Pitch-line velocity ``v_t`` in the carrier's frame, m/s (magnitude).
+    geometry : MeshGeometry
+    viscosity : float
+        Dynamic viscosity of the oil at its working temperature, mPa·s.
+    roughness : float
+        Arithmetic mean roughness of the flanks, µm.
+    lubricant_factor : float
+        ``X_L``: 1.0 for mineral oil (the standard's table gives others).
+
+    Examples
+    --------
+    >>> g = MeshGeometry(20, 40, module=2.0)
+    >>> round(iso14179_mu(1000.0, 20.0, 5.0, g, viscosity=30.0, roughness=0.5), 4)
+    0.0435
+    """
+    for name, value in (("face_width", face_width), ("viscosity", viscosity),
+                        ("roughness", roughness), ("lubricant_factor", lubricant_factor)):
+        if not (math.isfinite(value) and value > 0):
+            raise ModelError(f"{name} must be a finite number > 0, got {value!r}")
+    path = path_of_contact(geometry)
+    alpha_w = path.working_pressure_angle
+    rho_1 = path.working_radius_1 * math.sin(alpha_w)
+    rho_2 = path.working_radius_2 * math.sin(alpha_w) * (-1.0 if geometry.internal else 1.0)
+    rho_red = rho_1 * rho_2 / (rho_1 + rho_2) / math.cos(path.base_helix_angle)
+    load = abs(tangential_force) / math.cos(alpha_w) / face_width
+    v_sum = max(2.0 * abs(pitch_speed) * math.sin(alpha_w), MIN_SUM_VELOCITY)
+    if load == 0.0:
+        return 0.0
+    return 0.048 * (load / (v_sum * rho_red)) ** 0.2 * viscosity ** -0.05 \
+        * roughness ** 0.25 * lubricant_factor

@@ -132,3 +132,22 @@ def test_cli_refuses_an_impossible_pair_with_one_line(capsys: pytest.CaptureFixt
     assert main(["mesh", "20", "60", "--internal"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "interference" in err[0]
+
+
+def test_iso14179_mean_friction_coefficient_by_hand() -> None:
+    # m = 2, z = 20/40, α = 20°: ρ1 = 20·sin 20° = 6.8404 mm, ρ2 = 40·sin 20° = 13.6808 mm,
+    # ρ_red = ρ1ρ2/(ρ1+ρ2) = 4.5603 mm; F_bt/b = 1000/cos 20°/20 = 53.209 N/mm;
+    # v_Σ = 2·5·sin 20° = 3.4202 m/s; (53.209/(3.4202·4.5603))^0.2 = 1.27815;
+    # 30^−0.05 = 0.843614; 0.5^0.25 = 0.840896 → μ = 0.048·1.27820·0.843614·0.840896.
+    from powergraph.analyses.mesh_loss import iso14179_mu
+
+    by_hand = 0.048 * 1.27815 * 0.843614 * 0.840896
+    mu = iso14179_mu(1000.0, 20.0, 5.0, MeshGeometry(20, 40, module=2.0), 30.0, 0.5)
+    assert mu == pytest.approx(by_hand, rel=1e-5)
+    # The fit's exponents: doubling the load raises μ by 2^0.2, doubling the speed lowers it.
+    g = MeshGeometry(20, 40, module=2.0)
+    assert iso14179_mu(2000.0, 20.0, 5.0, g, 30.0, 0.5) / mu == pytest.approx(2 ** 0.2)
+    assert iso14179_mu(1000.0, 20.0, 10.0, g, 30.0, 0.5) / mu == pytest.approx(2 ** -0.2)
+    # An internal pair has a larger reduced radius of curvature, hence a smaller μ.
+    ring = MeshGeometry(20, 60, internal=True, module=2.0, addendum=0.8)
+    assert iso14179_mu(1000.0, 20.0, 5.0, ring, 30.0, 0.5) < mu
