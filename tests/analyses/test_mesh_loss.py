@@ -135,15 +135,19 @@ def test_cli_refuses_an_impossible_pair_with_one_line(capsys: pytest.CaptureFixt
 
 
 def test_iso14179_mean_friction_coefficient_by_hand() -> None:
-    # m = 2, z = 20/40, α = 20°: ρ1 = 20·sin 20° = 6.8404 mm, ρ2 = 40·sin 20° = 13.6808 mm,
-    # ρ_red = ρ1ρ2/(ρ1+ρ2) = 4.5603 mm; F_bt/b = 1000/cos 20°/20 = 53.209 N/mm;
-    # v_Σ = 2·5·sin 20° = 3.4202 m/s; (53.209/(3.4202·4.5603))^0.2 = 1.27815;
-    # 30^−0.05 = 0.843614; 0.5^0.25 = 0.840896 → μ = 0.048·1.27820·0.843614·0.840896.
+    # m = 2, z = 20/40, α = 20°, spur, standard: radii of curvature at the pitch point
+    # ρ = r·sin α, F_bt/b = F_t/cos α/b, v_Σ = 2·v_t·sin α; the standard's fit with
+    # η_oil = 30 mPa·s, Ra = 0.5 µm, X_L = 1.
     from powergraph.analyses.mesh_loss import iso14179_mu
 
-    by_hand = 0.048 * 1.27815 * 0.843614 * 0.840896
+    rho_1, rho_2 = 20 * math.sin(ALPHA), 40 * math.sin(ALPHA)     # 6.8404, 13.6808 mm
+    rho_red = rho_1 * rho_2 / (rho_1 + rho_2)                      # 4.5603 mm
+    load = 1000 / math.cos(ALPHA) / 20                             # 53.209 N/mm
+    v_sum = 2 * 5 * math.sin(ALPHA)                                # 3.4202 m/s
+    by_hand = 0.048 * (load / (v_sum * rho_red)) ** 0.2 * 30 ** -0.05 * 0.5 ** 0.25
     mu = iso14179_mu(1000.0, 20.0, 5.0, MeshGeometry(20, 40, module=2.0), 30.0, 0.5)
-    assert mu == pytest.approx(by_hand, rel=1e-5)
+    assert mu == pytest.approx(by_hand, rel=1e-12)
+    assert 0.0435 < mu < 0.0436
     # The fit's exponents: doubling the load raises μ by 2^0.2, doubling the speed lowers it.
     g = MeshGeometry(20, 40, module=2.0)
     assert iso14179_mu(2000.0, 20.0, 5.0, g, 30.0, 0.5) / mu == pytest.approx(2 ** 0.2)
