@@ -43,7 +43,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from powergraph.analyses.mesh_loss import MeshGeometry, mesh_loss
+    from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss
     from powergraph.errors import ModelError
 
     geometry = MeshGeometry(teeth_1=args.z1, teeth_2=args.z2, internal=args.internal,

@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from powergraph.analyses.mesh_loss import MeshGeometry, mesh_loss, sliding_integral
+from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss, sliding_integral
 from powergraph.cli.main import main
 from powergraph.errors import ModelError
 
@@ -138,7 +138,7 @@ def test_iso14179_mean_friction_coefficient_by_hand() -> None:
     # m = 2, z = 20/40, α = 20°, spur, standard: radii of curvature at the pitch point
     # ρ = r·sin α, F_bt/b = F_t/cos α/b, v_Σ = 2·v_t·sin α; the standard's fit with
     # η_oil = 30 mPa·s, Ra = 0.5 µm, X_L = 1.
-    from powergraph.analyses.mesh_loss import iso14179_mu
+    from powergraph.gears.mesh_loss import iso14179_mu
 
     rho_1, rho_2 = 20 * math.sin(ALPHA), 40 * math.sin(ALPHA)     # 6.8404, 13.6808 mm
     rho_red = rho_1 * rho_2 / (rho_1 + rho_2)                      # 4.5603 mm

@@ -30,7 +30,7 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
-from powergraph.analyses.backlash.involute import involute, inverse_involute
+from powergraph.gears.involute import involute, inverse_involute
 from powergraph.errors import ModelError
 
 
