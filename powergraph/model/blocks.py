@@ -39,6 +39,9 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
     if "geometry" in raw and "friction" not in raw:
         raise ModelError("a mesh's geometry is used by its friction block; add friction: "
                          "{mu: ...} or remove geometry", f"{path}.geometry")
+    if "friction" in raw and "efficiency" in raw:
+        raise ModelError("give the mesh's efficiency or its friction, not both (the "
+                         "friction law sets the efficiency)", f"{path}.efficiency")
     if "friction" in raw:
         from powergraph.model.block_friction import parse_mesh_friction
 

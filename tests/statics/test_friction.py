@@ -119,6 +119,14 @@ def test_bad_friction_blocks_name_the_place(friction, geometry, path, fragment) 
     assert str(info.value).startswith(path)
 
 
+def test_efficiency_beside_friction_is_refused() -> None:
+    data = _pair({"mu": 0.05}, {"module": 2})
+    data["links"][0]["efficiency"] = 0.98
+    with pytest.raises(ModelError, match="not both") as info:
+        model_from_dict(data)
+    assert str(info.value).startswith("links[0].efficiency")
+
+
 def test_geometry_without_friction_is_refused() -> None:
     data = _pair({"mu": 0.05}, {"module": 2})
     del data["links"][0]["friction"]
