@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
+from powergraph.errors import ModelError
 from powergraph.model.spec import Component
 
 
@@ -35,4 +36,16 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
         from powergraph.model.block_cycloid import validate_cycloid
 
         blocks["cycloid"] = validate_cycloid(raw["cycloid"], f"{path}.cycloid", pair, components)
+    if "geometry" in raw and "friction" not in raw:
+        raise ModelError("a mesh's geometry is used by its friction block; add friction: "
+                         "{mu: ...} or remove geometry", f"{path}.geometry")
+    if "friction" in raw and "efficiency" in raw:
+        raise ModelError("give the mesh's efficiency or its friction, not both (the "
+                         "friction law sets the efficiency)", f"{path}.efficiency")
+    if "friction" in raw:
+        from powergraph.model.block_friction import parse_mesh_friction
+
+        gears = tuple((g, components[g].teeth, components[g].internal) for g in pair)
+        blocks["friction"] = parse_mesh_friction(int(path[6:-1]), raw["friction"],
+                                                 raw.get("geometry"), gears, path)
     return blocks

@@ -19,7 +19,7 @@ DEFAULT_FIELDS = {"mesh_efficiency"}
 COMPONENT_FIELDS = {"role", "name", "kind", "teeth", "internal", "count", "geometry", "note"}
 LINK_FIELDS = {
     "mesh": {"type", "between", "carrier", "efficiency", "ratio", "name", "note",
-             "backlash", "backlash_arcmin", "cycloid"},
+             "backlash", "backlash_arcmin", "cycloid", "friction", "geometry"},
     "fixed": {"type", "between", "name", "note"},
     "coupling": {"type", "between", "efficiency", "name", "note"},
     "bearing": {"type", "between", "name", "note"},
@@ -241,10 +241,13 @@ def _mesh_fields(raw: Mapping, path: str, pair: tuple[str, str],
     eta = check_efficiency(raw["efficiency"], f"{path}.efficiency") \
         if "efficiency" in raw else default_eta
     blocks = {}
-    if any(key in raw for key in ("backlash", "backlash_arcmin", "cycloid")):
+    if any(key in raw for key in ("backlash", "backlash_arcmin", "cycloid", "friction",
+                                  "geometry")):
         from powergraph.model.blocks import validate_mesh_blocks
 
         blocks = validate_mesh_blocks(raw, path, pair, components)
+    if "friction" in blocks and not blocks["friction"].load_dependent:
+        eta = blocks["friction"].efficiency()[1]
     return {"carrier": carrier, "ratio": ratio, "efficiency": eta,
             "blocks": MappingProxyType(blocks)}
 

@@ -41,7 +41,15 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "self_locking": result.self_locking,
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,
+        **_friction_dict(result),
     }
+
+
+def _friction_dict(result: PowerFlowResult) -> dict[str, Any]:
+    if not result.friction:
+        return {}
+    return {"friction": [state.to_dict() for state in result.friction],
+            "friction_passes": result.friction_passes}
 
 
 def _fmt_power(watts: float) -> str:
@@ -80,7 +88,22 @@ def text_report(result: PowerFlowResult) -> str:
         lines.append(f"  {e.link:<6}{f'{raw(e.a)}-{raw(e.b)}':<10}{str(raw(e.carrier)):<9}"
                      f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.carrier_frame_power):>18}"
                      f"{_fmt_power(e.loss):>14}")
+    lines += _friction_lines(result)
     if result.load_sharing_assumed:
         lines += ["", "note: load sharing between parallel paths is statically indeterminate; "
                   "the minimum-norm (equal) sharing was assumed"]
     return "\n".join(lines)
+
+
+def _friction_lines(result: PowerFlowResult) -> list[str]:
+    if not result.friction:
+        return []
+    passes = (f", {result.friction_passes} passes" if result.friction_passes > 1 else "")
+    lines = ["", f"mesh friction (per mesh instance, carrier frame{passes})",
+             f"  {'link':<6}{'model':<10}{'F_t N':>12}{'v_t m/s':>10}{'mu':>9}{'H_V':>9}"
+             f"{'eta':>10}"]
+    for s in result.friction:
+        lines.append(f"  {s.link:<6}{s.model:<10}{s.tangential_force:>12.5g}"
+                     f"{s.pitch_speed:>10.4g}{s.mu:>9.4g}{s.loss_factor:>9.4g}"
+                     f"{s.efficiency:>10.6f}")
+    return lines

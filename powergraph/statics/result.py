@@ -61,6 +61,10 @@ class PowerFlowResult:
     passes: int
     load_sharing_assumed: bool = False
     method: str = "virtual-power"
+    #: Meshes whose efficiency comes from a friction law (MeshFrictionState), and the
+    #: passes of the load-dependent iteration (0 when no efficiency depends on the load).
+    friction: tuple = ()
+    friction_passes: int = 0
 
     @property
     def name(self) -> str:

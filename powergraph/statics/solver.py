@@ -9,6 +9,7 @@ import numpy as np
 from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
 from powergraph.model.spec import Model
 from powergraph.statics.directions import factors_of, relative_speeds, settle
+from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.equilibrium import Equilibrium, loads_of, solve_equilibrium
 from powergraph.statics.result import ElementFlow, PowerFlowResult
 
@@ -49,6 +50,8 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     >>> round(r.efficiency, 12), round(r.ratio, 12), round(r.total_loss, 9)
     (0.98, -2.0, 20.0)
     """
+    if needs_friction(model):
+        return solve_with_friction(model, lambda fixed: solve(fixed, speeds))
     kin = solve_speeds(model, speeds)
     elements = elements_of(model)
     loads = loads_of(model, kin)

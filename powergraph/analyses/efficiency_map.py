@@ -1,0 +1,126 @@
+"""Efficiency over output torque × input speed, as reducer catalogues draw it.
+
+With constant basic efficiencies a train's efficiency does not depend on its load or speed
+(the virtual-power statics are homogeneous), so the map is flat: one solve gives it. With
+load-dependent mesh friction (ISO/TR 14179-2) each point is solved with its own
+load-dependent passes.
+
+Examples
+--------
+>>> import powergraph as pg
+>>> m = efficiency_map(pg.load_model("models/rv40e.yaml"), [100.0, 400.0], [500.0, 1500.0])
+>>> m.efficiency.shape
+(2, 2)
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+
+from powergraph.errors import UsageError
+from powergraph.kinematics import solve_speeds
+from powergraph.model.spec import Model
+from powergraph.statics import solve
+from powergraph.statics.friction import friction_meshes
+
+RPM = 2.0 * math.pi / 60.0
+
+
+@dataclass(frozen=True)
+class EfficiencyMap:
+    """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
+    ``torques[j]`` (N·m, the load the output drives)."""
+
+    name: str
+    torques: np.ndarray
+    speeds_rpm: np.ndarray
+    efficiency: np.ndarray
+    rated_torque: float | None = None
+    load_dependent: bool = False
+    input_power: np.ndarray = field(default=None, repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,
+        load_dependent}``."""
+        return {"name": self.name, "torques": self.torques.tolist(),
+                "speeds_rpm": self.speeds_rpm.tolist(), "efficiency": self.efficiency.tolist(),
+                "rated_torque": self.rated_torque, "load_dependent": self.load_dependent}
+
+    def text_report(self) -> str:
+        head = "speed rpm \\ torque N·m"
+        lines = [f"{self.name} — efficiency map (%)" + ("" if self.load_dependent else
+                 ": constant mesh efficiencies, so it does not vary"),
+                 f"{head:>22}" + "".join(f"{t:>10.4g}" for t in self.torques)]
+        for speed, row in zip(self.speeds_rpm, self.efficiency):
+            lines.append(f"{speed:>22.5g}" + "".join(f"{100 * e:>10.3f}" for e in row))
+        return "\n".join(lines)
+
+    def plot(self, ax: Any = None, **kwargs: Any):
+        """Contours of the efficiency with the rated torque marked (delegates to
+        :func:`powergraph.plot.efficiency_map.plot_efficiency_map`)."""
+        from powergraph.plot.efficiency_map import plot_efficiency_map
+
+        return plot_efficiency_map(self, ax=ax, **kwargs)
+
+
+def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[float],
+                   rated_torque: float | None = None) -> EfficiencyMap:
+    """Solve ``model`` over output torque × input speed.
+
+    Parameters
+    ----------
+    model : Model
+        A 1-DOF train with one input and one output port (its own loads are replaced).
+    torques : sequence of float
+        Output load torques, N·m (> 0: the load resists the output's motion).
+    speeds_rpm : sequence of float
+        Input speeds, rpm (non-zero).
+    rated_torque : float, optional
+        Drawn as a line on the map.
+
+    Returns
+    -------
+    EfficiencyMap
+    """
+    torques, speeds = _grid(torques, "torque"), _grid(speeds_rpm, "speed")
+    if len(model.inputs) != 1 or len(model.outputs) != 1:
+        raise UsageError("an efficiency map needs one input and one output port")
+    if np.any(speeds == 0.0):
+        raise UsageError("input speeds must be non-zero")
+    dependent = any(f.load_dependent for f in friction_meshes(model).values())
+    sense = np.sign(solve_speeds(model).ratio or 1.0)
+    values = np.empty((speeds.size, torques.size))
+    power = np.empty_like(values)
+    for i, speed in enumerate(speeds):
+        for j, torque in enumerate(torques):
+            if not dependent and (i or j):
+                values[i, j] = values[0, 0]
+                power[i, j] = power[0, 0] * (speed / speeds[0]) * (torque / torques[0])
+                continue
+            result = solve(_at(model, speed * RPM, torque, sense))
+            values[i, j], power[i, j] = result.efficiency, result.input_power
+    return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
+                         efficiency=values, rated_torque=rated_torque,
+                         load_dependent=dependent, input_power=power)
+
+
+def _at(model: Model, speed: float, torque: float, sense: float) -> Model:
+    """``model`` at input speed ``speed`` (rad/s) with output load ``torque`` (N·m)."""
+    port_in = model.inputs[0].index
+    port_out = model.outputs[0].index
+    model = model.with_port(port_in, speed=speed, power=None, torque=None)
+    # The load opposes the output's motion, whose sense is the input's over the ratio.
+    return model.with_port(port_out, speed=None, power=None,
+                           torque=-float(torque) * float(np.sign(speed) * sense))
+
+
+def _grid(values: Sequence[float], what: str) -> np.ndarray:
+    array = np.asarray(values, dtype=float)
+    if array.ndim != 1 or array.size == 0 or not np.all(np.isfinite(array)):
+        raise UsageError(f"the {what} values must be a non-empty list of finite numbers")
+    if what == "torque" and np.any(array <= 0):
+        raise UsageError("output torques must be > 0 (the load the output drives)")
+    return array

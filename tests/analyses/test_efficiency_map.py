@@ -1,0 +1,86 @@
+"""Efficiency maps: flat for constant efficiencies, the friction law's trends otherwise."""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+import powergraph as pg
+from powergraph.analyses.efficiency_map import efficiency_map
+from powergraph.cli.main import main
+from powergraph.model import model_from_dict
+
+ISO_PAIR = {"name": "iso pair", "components": {0: {"role": "frame"}, 1: {"teeth": 20},
+                                               2: {"teeth": 40}},
+            "links": [{"type": "mesh", "between": [1, 2],
+                       "friction": {"model": "iso14179", "viscosity": 30, "roughness": 0.5},
+                       "geometry": {"module": 2, "face_width": 20}}],
+            "ports": [{"component": 1, "role": "input", "speed": 100.0, "power": 1000.0},
+                      {"component": 2, "role": "output"}]}
+
+
+def test_constant_efficiencies_give_a_flat_map_equal_to_the_closed_form() -> None:
+    # Sun -> carrier, ring fixed: (1 + η0·k)/(1 + k) with η0 = η(s-p)·η(p-r) (closed form).
+    model = pg.load_model("models/planetary_2kh_sun_to_carrier.yaml")
+    result = pg.solve(model)
+    meshes = model.meshes
+    sun, ring = (model.components[c] for c in (meshes[0].between[0], meshes[1].between[1]))
+    k = ring.teeth / sun.teeth
+    eta0 = meshes[0].efficiency * meshes[1].efficiency
+    closed = (1 + eta0 * k) / (1 + k)
+    assert result.efficiency == pytest.approx(closed, rel=1e-9)
+    emap = efficiency_map(model, [10.0, 50.0, 90.0], [300.0, 3000.0])
+    assert not emap.load_dependent
+    assert np.allclose(emap.efficiency, closed, rtol=1e-9, atol=0)
+
+
+def test_friction_map_points_are_fixed_points_of_the_iso_law() -> None:
+    model = model_from_dict(ISO_PAIR)
+    emap = efficiency_map(model, [20.0, 100.0, 200.0], [500.0, 3000.0])
+    assert emap.load_dependent
+    friction = model.links[0].blocks["friction"]
+    for i, rpm in enumerate(emap.speeds_rpm):
+        for j, torque in enumerate(emap.torques):
+            eta = emap.efficiency[i, j]
+            # Ratio 2: the pinion carries T_out/(2η) on r_w1 = 20 mm at v_t = ω1·0.020.
+            force = torque / 2 / eta / 0.020
+            speed = rpm * 2 * math.pi / 60 * 0.020
+            assert friction.efficiency(force, speed)[1] == pytest.approx(eta, abs=1e-11)
+    # μ grows as the load^0.2 and falls as the speed^-0.2: efficiency falls with torque
+    # and rises with speed.
+    assert np.all(np.diff(emap.efficiency, axis=1) < 0)
+    assert np.all(np.diff(emap.efficiency, axis=0) > 0)
+
+
+def test_cli_json_and_picture(tmp_path, capsys) -> None:
+    path = tmp_path / "pair.yaml"
+    path.write_text(json.dumps(ISO_PAIR))
+    picture = tmp_path / "map.png"
+    assert main(["map", str(path), "--torque", "20:200:4", "--speed", "500:3000:3",
+                 "--rated", "150", "--json", "-o", str(picture)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert len(data["efficiency"]) == 3 and len(data["efficiency"][0]) == 4
+    assert data["rated_torque"] == 150 and data["load_dependent"] is True
+    assert picture.stat().st_size > 1000
+
+
+def _status(argv: list[str]) -> int:
+    """Exit status of the command line (argparse exits on its own for bad syntax)."""
+    try:
+        return main(argv)
+    except SystemExit as exc:
+        return int(exc.code)
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (["--torque", "0:10:3", "--speed", "100"], "torques must be > 0"),
+    (["--torque", "10:20:x", "--speed", "100"], "START:STOP:N"),
+    (["--torque", "10", "--speed", "0"], "non-zero"),
+])
+def test_cli_bad_arguments_exit_2(tmp_path, capsys, args, fragment) -> None:
+    path = tmp_path / "pair.yaml"
+    path.write_text(json.dumps(ISO_PAIR))
+    assert _status(["map", str(path), *args]) == 2
+    assert fragment in capsys.readouterr().err
