@@ -31,7 +31,7 @@ from powergraph.analyses.tolerance.spec import Tolerances
 from powergraph.errors import ModelError
 
 #: Nodes of the fluctuation table over the support of the profile error.
-TABLE_NODES = 9
+TABLE_NODES = 6
 OUTPUTS = ("lost_motion_arcmin", "fluctuation_percent", "efficiency")
 
 
