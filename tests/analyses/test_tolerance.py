@@ -298,6 +298,11 @@ def test_bad_spec(text) -> None:
     ({"links.0.cycloid.profile_error": {"nominal": 0.01, "tolerance": 0.001}},
      "links[0] has no cycloid: block"),
     ({"components.1.teeth": {"nominal": 20, "tolerance": 1}}, "only links."),
+    ({"components.1.geometry.module": {"nominal": 1, "tolerance": 0.1}},
+     "component geometry is not toleranced"),
+    ({"links.0.cycloid": {"nominal": 1, "tolerance": 0.1}}, "links[0] has no cycloid"),
+    ({"links.0.backlash.runout.1": {"nominal": 1, "tolerance": 0.1}},
+     "links[0] has no backlash: block"),
     ({"links.0.backlash_arcmin": {"nominal": 1, "grade": "IT3", "size": 10}}, ".grade: grade"),
     ({"links.0.backlash_arcmin": 3}, "must be a mapping"),
     ([], "tolerances: must be a mapping"),
@@ -313,3 +318,26 @@ def test_no_tolerances_and_unknown_spec_output() -> None:
         tolerance_analysis(chain(), samples=10)
     with pytest.raises(UsageError, match="no fluctuation_percent"):
         tolerance_analysis(uniform_chain(), samples=10, specs=["fluctuation<=1%"])
+
+
+@pytest.mark.parametrize("path, message", [
+    ("links.0.backlash.runout.X", "'X' is not a gear of links[0]"),
+    ("links.0.backlash.bearing_clearance.5", "no bearing_clearance[5] (links[0] gives 2)"),
+    ("links.0.backlash.module", "backlash.module is not toleranced"),
+    ("links.0.backlash.runout", "expected links.<i>.backlash.runout.<gear>"),
+    ("links.0.backlash_arcmin", "links[0] has no backlash_arcmin"),
+])
+def test_invalid_backlash_paths(path, message) -> None:
+    with pytest.raises(ModelError) as info:
+        with_tolerances("models/backlash_li2012.yaml",
+                        {path: {"distribution": "uniform", "min": 0.01, "max": 0.02}})
+    assert f"tolerances[{path!r}]" in str(info.value)
+    assert message in str(info.value)
+
+
+def test_lengths_take_units() -> None:
+    model = with_tolerances("models/backlash_li2012.yaml", {
+        "links.0.backlash.runout.R1": {"distribution": "uniform", "min": "10 um",
+                                       "max": "0.03 mm"}})
+    dist = model.tolerances.entries[0].distribution
+    assert (dist.low, dist.high) == pytest.approx((0.010, 0.030))

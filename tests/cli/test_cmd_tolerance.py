@@ -52,6 +52,7 @@ def test_json_keys_and_closed_form(capsys, pair) -> None:
                                                                                     abs=0.05)
 
 
+@pytest.mark.slow
 def test_text_report_and_figure(capsys, tmp_path) -> None:
     figure = tmp_path / "tol.png"
     status, out, err = run(capsys, RV, "--samples", "20000", "--seed", "1",

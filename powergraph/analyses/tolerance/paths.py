@@ -102,6 +102,10 @@ def resolve_path(model: Model, path: str) -> Target:
     if not isinstance(path, str) or not path.strip():
         raise ModelError("a PATH must be non-empty text", place)
     parts = re.sub(r"\[([^\]]*)\]", r".\1", path.strip()).split(".")
+    if parts[0] == "components" and "geometry" in parts:
+        raise ModelError("component geometry is not toleranced here: it changes none of "
+                         "the outputs (lost motion, fluctuation, efficiency); a cycloid "
+                         "disc's profile is links.<i>.cycloid.profile_error", place)
     if parts[0] != "links":
         raise ModelError("only links.<i>.efficiency, links.<i>.backlash_arcmin, "
                          "links.<i>.backlash.… and links.<i>.cycloid.profile_error are "
