@@ -12,7 +12,8 @@ profile error, both mesh efficiencies) is analysed by
     ``analyse_backlash`` (lost motion), ``train_fluctuation`` (the exact fluctuation) and
     ``powergraph.solve`` (efficiency); extrapolated to ``--units``.
 
-``setup_s`` is the one-off preparation of (a) (the fluctuation table of 10 exact
+``max_abs_diff_vs_loop`` compares (a) and (b) on the loop's units, per output. ``setup_s``
+is the one-off preparation of (a) (the fluctuation table of 10 exact
 fluctuations and the compiled sweep); ``total_s`` = setup + mc. Wall-clock, best of
 ``--repeat`` after a warm-up; (a) and (b) run in the same process, one after the other.
 
@@ -94,9 +95,9 @@ def main() -> None:
     # The loop's units through the vectorised evaluator: the same numbers?
     columns = {p: np.array([u[p] for u in units]) for p in units[0]}
     vectorised = evaluator(columns)
-    diff = max(float(np.max(np.abs(vectorised[k] - np.array([v[i] for v in loop_values]))))
-               for i, k in enumerate(("lost_motion_arcmin", "fluctuation_percent",
-                                      "efficiency")))
+    diff = {k: float(np.max(np.abs(vectorised[k] - np.array([v[i] for v in loop_values]))))
+            for i, k in enumerate(("lost_motion_arcmin", "fluctuation_percent",
+                                   "efficiency"))}
     row = {"units": args.units, "setup_s": round(setup, 3), "mc_s": round(mc, 3),
            "total_s": round(setup + mc, 3), "sobol_s": round(sobol, 3),
            "units_per_s": round(args.units / mc), "loop_units": args.loop,

@@ -7,6 +7,7 @@ of Li et al. 2012 by hand) or the nominal analyses of the same model (``backlash
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -229,7 +230,6 @@ def test_fluctuation_interpolation_error_is_within_its_bound() -> None:
     assert 0 < table.error_bound < 1e-3 * table.values.max()
     for d in (table.errors[1:] + table.errors[:-1])[[0, 2, -1]] / 2:   # midpoints
         link = model.links[1]
-        import dataclasses
         blocks = dict(link.blocks)
         blocks["cycloid"] = dataclasses.replace(blocks["cycloid"], profile_error=float(d))
         exact = train_fluctuation(model.with_link(1, blocks=blocks)).stages[0]
