@@ -13,7 +13,7 @@ from powergraph.errors import ModelError, PowerGraphError, UsageError
 
 #: Command modules, in the order ``--help`` lists them. Each has register() and run().
 COMMANDS = ("solve", "check", "draw", "compare", "backlash", "cycloid", "volume", "sweep",
-            "formula", "mesh", "map")
+            "formula", "tolerance", "mesh", "map")
 
 
 def build_parser() -> argparse.ArgumentParser:

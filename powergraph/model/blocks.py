@@ -4,6 +4,7 @@
 - ``links[i].backlash`` / ``links[i].backlash_arcmin`` (seeds/002):
   :mod:`powergraph.model.block_backlash`
 - ``links[i].cycloid`` (seeds/003): :mod:`powergraph.model.block_cycloid`
+- top-level ``tolerances`` (PATH -> distribution): :mod:`powergraph.analyses.tolerance.spec`
 
 The model layer validates them (so ``powergraph check`` catches every mistake) and stores
 the result; the analyses read them.
@@ -49,3 +50,11 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
         blocks["friction"] = parse_mesh_friction(int(path[6:-1]), raw["friction"],
                                                  raw.get("geometry"), gears, path)
     return blocks
+
+
+def validate_tolerances(raw: Any, model) -> Any:
+    """Validate the top-level ``tolerances:`` block against the built model (its PATHs
+    address the model's values; see :mod:`powergraph.analyses.tolerance.spec`)."""
+    from powergraph.analyses.tolerance.spec import validate_tolerances as validate
+
+    return validate(raw, model)

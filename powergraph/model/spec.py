@@ -104,6 +104,7 @@ class Model:
     body_of: Mapping[str, str]
     description: str | None = None
     source: str | None = None
+    tolerances: Any = None  # top-level ``tolerances:`` (powergraph.analyses.tolerance.spec)
 
     @property
     def frame(self) -> str:

@@ -6,6 +6,7 @@ errors too.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
@@ -14,7 +15,7 @@ from powergraph.errors import ModelError
 from powergraph.model.spec import LINK_TYPES, Component, Link, Model, Port
 from powergraph.model.units import parse_quantity
 
-TOP_FIELDS = {"name", "description", "defaults", "components", "links", "ports"}
+TOP_FIELDS = {"name", "description", "defaults", "components", "links", "ports", "tolerances"}
 DEFAULT_FIELDS = {"mesh_efficiency"}
 COMPONENT_FIELDS = {"role", "name", "kind", "teeth", "internal", "count", "geometry", "note"}
 LINK_FIELDS = {
@@ -100,6 +101,11 @@ def model_from_dict(data: Any, source: str | None = None) -> Model:
                   links=links, ports=ports, bodies=bodies,
                   body_of=MappingProxyType(body_of), source=source)
     check_topology(model)
+    if "tolerances" in data:
+        from powergraph.model.blocks import validate_tolerances
+
+        model = dataclasses.replace(model, tolerances=validate_tolerances(data["tolerances"],
+                                                                         model))
     return model
 
 

@@ -1,0 +1,126 @@
+"""The result of a tolerance analysis: a frozen dataclass with JSON, text and plot."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from powergraph.analyses.tolerance.stats import QUANTILES, Yield
+
+LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
+          "fluctuation_percent": ("ratio fluctuation", "%"),
+          "efficiency": ("efficiency", "")}
+#: The output whose Sobol indices are the top-level ``sensitivity`` of the JSON.
+PRIMARY = ("lost_motion_arcmin", "fluctuation_percent", "efficiency")
+
+
+@dataclass(frozen=True, eq=False)
+class ToleranceResult:
+    """Outputs of ``samples`` sampled units, yields of the specifications, sensitivities.
+
+    Attributes
+    ----------
+    values : mapping
+        ``{output: array}`` of every unit (read-only).
+    outputs : mapping
+        ``{output: {mean, sd, p50, p95, p99_73, max, min, failed}}``.
+    yields : tuple of Yield
+    sensitivity : mapping
+        ``{output: {PATH: {first, total, first_conf, total_conf}}}`` (Sobol, SALib).
+    fluctuation_tables : mapping
+        ``{link: {errors, values, interpolation_error_bound}}`` where the profile error
+        varies.
+    """
+
+    name: str
+    samples: int
+    seed: int
+    tolerances: Any
+    values: Mapping[str, np.ndarray]
+    outputs: Mapping[str, dict]
+    yields: tuple[Yield, ...]
+    sensitivity: Mapping[str, dict]
+    sobol_samples: int = 0
+    fluctuation_tables: Mapping[int, dict] = field(default_factory=dict)
+
+    @property
+    def primary(self) -> str | None:
+        """The output the top-level sensitivity describes (lost motion first)."""
+        return next((o for o in PRIMARY if o in self.sensitivity), None)
+
+    def ranked(self, output: str | None = None) -> list[tuple[str, dict]]:
+        """``[(PATH, indices)]`` by decreasing total index."""
+        output = output or self.primary
+        if output is None:
+            return []
+        return sorted(self.sensitivity[output].items(), key=lambda kv: -kv[1]["total"])
+
+    def to_dict(self) -> dict:
+        primary = self.primary
+        return {
+            "name": self.name, "samples": self.samples, "seed": self.seed,
+            "outputs": {k: dict(v) for k, v in self.outputs.items()},
+            "yield": {y.spec.text: y.to_dict() for y in self.yields},
+            "yield_interval": "Wilson score, 95 %",
+            "sensitivity": {p: {"first": s["first"], "total": s["total"]}
+                            for p, s in self.ranked(primary)} if primary else {},
+            "sensitivity_output": primary,
+            "sensitivity_by_output": {o: dict(self.ranked(o)) for o in self.sensitivity},
+            "sobol_samples": self.sobol_samples,
+            "tolerances": self.tolerances.to_dict(),
+            "fluctuation_tables": {str(k): v for k, v in self.fluctuation_tables.items()},
+        }
+
+    def text_report(self) -> str:
+        lines = [f"{self.name} — tolerance analysis, {self.samples} units (seed {self.seed})",
+                 ""]
+        header = ["output", "mean", "sd", *QUANTILES, "max"]
+        rows = [header]
+        for name, s in self.outputs.items():
+            label, unit = LABELS.get(name, (name, ""))
+            rows.append([f"{label}{f' ({unit})' if unit else ''}",
+                         *(_num(s[k]) for k in ("mean", "sd", *QUANTILES, "max"))])
+            if s.get("failed"):
+                rows[-1][0] += f" [{s['failed']} not computed]"
+        lines += _table(rows)
+        if self.yields:
+            lines += ["", "yield (95 % Wilson score interval)"]
+            for y in self.yields:
+                low, high = y.interval
+                lines.append(f"  {y.spec.text:<28} {100 * y.fraction:8.4f} %   "
+                             f"[{100 * low:.4f}, {100 * high:.4f}] %")
+        for output in self.sensitivity:
+            lines += ["", f"Sobol indices of {LABELS.get(output, (output,))[0]} "
+                          f"(SALib, N = {self.sobol_samples}), by total index"]
+            rows = [["PATH", "first", "total"]]
+            rows += [[p, _num(s["first"]), _num(s["total"])] for p, s in self.ranked(output)]
+            lines += _table(rows)
+        for link, table in self.fluctuation_tables.items():
+            lines += ["", f"fluctuation of links[{link}]: linear interpolation on "
+                          f"{len(table['errors'])} profile errors, error <= "
+                          f"{table['interpolation_error_bound']:.2g} % (estimated)"]
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Histograms of the outputs (with spec lines) and the tornado chart of the indices.
+
+        Delegates to :func:`powergraph.plot.tolerance.plot_tolerance`.
+        """
+        from powergraph.plot.tolerance import plot_tolerance
+
+        return plot_tolerance(self, ax=ax)
+
+
+def _num(value: float) -> str:
+    return "-" if value is None or (isinstance(value, float) and math.isnan(value)) \
+        else f"{value:.6g}"
+
+
+def _table(rows: list[list[str]]) -> list[str]:
+    """Rows padded to common widths, the first column left-aligned, the others right."""
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    return ["  ".join(cell.ljust(w) if i == 0 else cell.rjust(w)
+                      for i, (cell, w) in enumerate(zip(row, widths))).rstrip()
+            for row in rows]
