@@ -119,6 +119,26 @@ def _formula():
 
 
 #: (name, builder, has a picture)
+def _tolerance():
+    from powergraph.analyses.tolerance import tolerance_analysis
+
+    return tolerance_analysis(pg.load_model(MODELS / "rv40e_tolerances.yaml"), samples=2000,
+                              seed=1, specs=["lost_motion<=1arcmin"], sobol_samples=0)
+
+
+def _efficiency_map():
+    from powergraph.analyses.efficiency_map import efficiency_map
+
+    return efficiency_map(pg.load_model(MODELS / "planetary_2kh_sun_to_carrier.yaml"),
+                          [10.0, 20.0], [100.0, 200.0], rated_torque=15.0)
+
+
+def _mesh_loss():
+    from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss
+
+    return mesh_loss(MeshGeometry(20, 40), mu=0.05)
+
+
 RESULTS = [
     ("PowerFlowResult", _power_flow, True),
     ("Wang2021Result", _wang2021, True),
@@ -135,6 +155,9 @@ RESULTS = [
     ("ProfileErrorTable", _pitch_circle_errors, True),
     ("SweepResult", _sweep, True),
     ("FormulaResult", _formula, False),
+    ("ToleranceResult", _tolerance, True),
+    ("EfficiencyMap", _efficiency_map, True),
+    ("MeshLoss", _mesh_loss, False),
 ]
 
 

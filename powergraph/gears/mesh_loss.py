@@ -119,9 +119,12 @@ class MeshLoss:
                       f"basic efficiency         {self.efficiency:.6f}"]
         return "\n".join(lines)
 
-    def plot(self, ax=None, **kwargs):
-        """There is nothing to draw for one pair: raises :class:`ModelError`."""
-        raise ModelError("a mesh loss result has no picture; use text_report() or to_dict()")
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Nothing to draw: raises :class:`~powergraph.result.NothingToDrawError`."""
+        from powergraph.result import nothing_to_draw
+
+        raise nothing_to_draw(self, "print text_report() for the contact ratios and loss "
+                                    "factor")
 
 
 def path_of_contact(g: MeshGeometry) -> PathOfContact:

@@ -99,12 +99,13 @@ def plot_tolerance(result, ax=None):
     Parameters
     ----------
     result : ToleranceResult
-    ax : sequence of matplotlib Axes, optional
-        One per panel (outputs, then the tornado if there are indices).
+    ax : matplotlib Axes or sequence of Axes, optional
+        One per panel (outputs, then the tornado if there are indices); a single Axes gets
+        the first output's histogram only, and is returned as it is.
 
     Returns
     -------
-    list of matplotlib Axes
+    list of matplotlib Axes, or the single Axes given
     """
     from powergraph.analyses.tolerance.result import LABELS
 
@@ -115,6 +116,7 @@ def plot_tolerance(result, ax=None):
 
         fig, axes = plt.subplots(panels, 1, figsize=(6.8, 3.2 * panels), squeeze=False)
         ax = list(axes[:, 0])
+    single = not isinstance(ax, (list, tuple, np.ndarray))
     ax = list(np.atleast_1d(ax))
     for name, axis in zip(outputs, ax):
         label, unit = LABELS.get(name, (name, ""))
@@ -122,8 +124,8 @@ def plot_tolerance(result, ax=None):
         output_histogram(result.values[name], f"{label}{f' ({unit})' if unit else ''}",
                          limits, ax=axis, title=f"{result.name}: {label}, "
                                                 f"{result.samples} units")
-    if result.primary:
+    if result.primary and len(ax) > len(outputs):
         tornado(dict(result.ranked()), ax=ax[len(outputs)],
                 title=f"Sobol indices of {LABELS[result.primary][0]}")
     ax[0].figure.tight_layout()
-    return ax
+    return ax[0] if single else ax
