@@ -143,7 +143,9 @@ def assert_locked(result: PowerFlowResult, rtol: float = RTOL) -> None:
 
 def consistent_patterns(model, speeds=None, tolerance: float = 1e-9) -> list[dict[int, int]]:
     """Every self-consistent driver pattern, by plain enumeration (2^m torque balances for
-    m moving lossy elements; keep m small): ``[{link index: +1 (a drives) / -1}]``.
+    m moving lossy elements; keep m small): ``[{link index: +1 (a drives) / -1}]``,
+    one per distinct solution (elements passing no power are left out of the dicts, so
+    patterns differing only there count once).
 
     Independent of the solver's search: it only shares the kinematics and the torque
     balance. A pattern is consistent when every lossy element passes power the assumed
@@ -168,7 +170,7 @@ def consistent_patterns(model, speeds=None, tolerance: float = 1e-9) -> list[dic
     rel = np.array([kin.body_speeds[e.body_a] - kin.body_speeds[e.body_c] for e in elements])
     top = max(abs(w) for w in kin.body_speeds.values())
     lossy = [k for k, e in enumerate(elements) if e.efficiency < 1 and abs(rel[k]) > 1e-12 * top]
-    found = []
+    found: dict[tuple, dict[int, int]] = {}
     for codes in itertools.product((1, -1), repeat=len(lossy)):
         factors = np.ones(len(elements))
         for k, code in zip(lossy, codes):
@@ -178,8 +180,10 @@ def consistent_patterns(model, speeds=None, tolerance: float = 1e-9) -> list[dic
         power = -forces * rel
         scale = max(float(np.max(np.abs(power))), 1e-300)
         if all(code * power[k] >= -tolerance * scale for k, code in zip(lossy, codes)):
-            found.append({elements[k].link: code for k, code in zip(lossy, codes)})
-    return found
+            passing = {elements[k].link: code for k, code in zip(lossy, codes)
+                       if abs(power[k]) > tolerance * scale}
+            found.setdefault(tuple(sorted(passing.items())), passing)
+    return list(found.values())
 
 
 def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:
