@@ -17,7 +17,7 @@ import pytest
 
 import powergraph as pg
 from powergraph.analyses.sweep import STATUS, cartesian, compile_sweep, parse_set, sweep
-from powergraph.errors import ModelError, SolveError, StaticsError, UsageError
+from powergraph.errors import ModelError, StaticsError, UsageError
 from powergraph.kinematics import backdriven
 from powergraph.model import load_model, load_yaml_file, model_from_dict
 
@@ -190,9 +190,8 @@ def test_trains_equal_single_solves(name, drive) -> None:
                 variant = backdriven(variant)
             variant = with_efficiencies(variant, {i: values[f"links.{i}.efficiency"][j]
                                                   for i in meshes})
-            try:
-                single = pg.solve(variant)
-            except SolveError:
+            single = pg.solve(variant)
+            if single.search is not None:  # the fixed-point iteration cycled
                 assert STATUS[swept.status[j]] in ("cycle", "unsettled")
                 continue
             assert_matches_single(swept, j, single)
@@ -271,14 +270,15 @@ def test_chunks_do_not_change_the_numbers() -> None:
 @pytest.mark.parametrize("backend", ["symbolic", "numeric"])
 def test_direction_cycles_are_flagged_not_wrong(backend) -> None:
     # Back-driven RV with a very lossy cycloid mesh: no consistent direction pattern; the
-    # single solver raises, the sweep flags the variant (NaN efficiency, converged False).
+    # single solver searches and gives the locking verdict (docs/locking.md), the sweep
+    # (fixed-point iteration only) flags the variant (NaN efficiency, converged False).
     back = backdriven(model("rv40e.yaml"))
     eta = np.array([0.1, 0.2, 0.5, 0.9])
     swept = sweep(back, {"links.1.efficiency": eta}, backend=backend)
     for j, e in enumerate(eta):
-        try:
-            single = pg.solve(back.with_link(1, efficiency=float(e)))
-        except SolveError:
+        single = pg.solve(back.with_link(1, efficiency=float(e)))
+        if single.search is not None:
+            assert single.lock is not None and single.lock.meshes
             assert not swept.converged[j]
             assert STATUS[swept.status[j]] == "cycle"
             assert np.isnan(swept.efficiency[j]) and np.isnan(swept.losses[1][j])
@@ -298,9 +298,8 @@ def test_cycles_inside_a_large_sweep() -> None:
     for j in rng.choice(20_000, 30, replace=False):
         variant = with_efficiencies(back, {0: values["links.0.efficiency"][j],
                                            1: values["links.1.efficiency"][j]})
-        try:
-            single = pg.solve(variant)
-        except SolveError:
+        single = pg.solve(variant)
+        if single.search is not None:  # cycled: the single solver searched
             assert STATUS[swept.status[j]] == "cycle"
             continue
         assert_matches_single(swept, j, single)
