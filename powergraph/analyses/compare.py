@@ -27,7 +27,10 @@ class ComparisonRow:
     """One train's figures of merit (powers in W, volume in mm³, density in kW/L).
 
     ``backdrive_efficiency`` is None (with ``backdrive_note``) where back-driving is not
-    defined (several inputs or outputs) or has no consistent solution.
+    defined (several inputs or outputs). A self-locking back-drive keeps its formal
+    efficiency (<= 0) with ``backdrive_self_locking`` True; a back-drive that locks
+    (no consistent direction pattern: docs/locking.md) has efficiency 0 and the locking
+    reason in ``backdrive_note``.
     """
 
     name: str
@@ -93,7 +96,8 @@ def _backdrive(model: Model) -> tuple[float | None, bool | None, str | None]:
         result = solve(backdriven(model))
     except PowerGraphError as exc:
         return None, None, str(exc)
-    return result.efficiency, result.self_locking, None
+    note = f"locks: {result.lock.reason}" if result.lock is not None else None
+    return result.efficiency, result.self_locking, note
 
 
 def _volume(model: Model, output_power: float) -> tuple[float | None, float | None]:

@@ -55,12 +55,30 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Efficiency columns shown as "locks" where the train self-locks that way (the formal
+#: value, <= 0, stays in the JSON; docs/locking.md).
+LOCKING = {"efficiency": "self_locking", "backdrive_efficiency": "backdrive_self_locking"}
+
+
 def table(rows) -> str:
-    """Aligned text table, one row per train; columns with no data anywhere are left out."""
+    """Aligned text table, one row per train; columns with no data anywhere are left out.
+    A self-locking direction shows "locks" instead of its formal (<= 0) efficiency.
+
+    >>> from types import SimpleNamespace as Row
+    >>> row = Row(name="K-H-V", ratio=-39.0, efficiency=0.29, self_locking=False,
+    ...           backdrive_efficiency=-1.4, backdrive_self_locking=True,
+    ...           circulating_power=0.0, max_virtual_power_ratio=39.0, meshes=1,
+    ...           volume_mm3=None, power_density_kw_per_l=None)
+    >>> print(table([row]))
+    train  ratio   eff %  back %  locks back  circ. W  max Pv/P  meshes
+    -----  -----  ------  ------  ----------  -------  --------  ------
+    K-H-V    -39  29.00%   locks         yes        0        39       1
+    """
     columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in rows)]
     cells = [[header for _, header, _ in columns]]
     for row in rows:
-        cells.append([_cell(getattr(row, key), fmt) for key, _, fmt in columns])
+        cells.append(["locks" if key in LOCKING and getattr(row, LOCKING[key])
+                      else _cell(getattr(row, key), fmt) for key, _, fmt in columns])
     return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
 
 
