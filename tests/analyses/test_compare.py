@@ -65,7 +65,7 @@ ports: [{component: H, role: input, speed: 100, power: 10}, {component: out, rol
     assert row.backdrive_self_locking is True
 
 
-def test_compare_json_has_the_issue_keys(capsys) -> None:
+def test_compare_json_has_the_documented_keys(capsys) -> None:
     paths = [str(MODELS / "rv40e.yaml"), str(MODELS / "wolfrom_3k.yaml")]
     assert main(["compare", *paths, "--json", "--mesh-efficiency", "0.98"]) == 0
     rows = json.loads(capsys.readouterr().out)

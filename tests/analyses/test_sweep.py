@@ -1,8 +1,8 @@
-"""Compiled, vectorised sweeps (issue 9) against single solves and closed forms.
+"""Compiled, vectorised sweeps against single solves and closed forms.
 
 Expected values come from ``powergraph.solve`` on the modified model (the validated single
 solver: ``model.with_link``/``with_port``, or the model file rebuilt with new teeth by
-``model_from_dict``), from the closed forms of REFERENCE.md §C and the model files'
+``model_from_dict``), from the planetary closed forms (tests/data/reference_trains.yaml) and the model files'
 descriptions, or from hand derivations — never from the sweep's own output.
 """
 from __future__ import annotations
@@ -71,7 +71,7 @@ def assert_matches_single(swept, j: int, single) -> None:
     assert bool(swept.self_locking.flat[j]) == single.self_locking
 
 
-# --- against REFERENCE.md --------------------------------------------------------------
+# --- against the reference values (tests/data/reference_values.md) ---------------------
 
 def test_rv_reference_b_values() -> None:
     r = sweep(model("rv40e.yaml"), {"links.1.efficiency": [0.94, 0.998]})
@@ -84,7 +84,7 @@ def test_rv_reference_b_values() -> None:
 
 @pytest.mark.parametrize("backend", ["symbolic", "numeric"])
 def test_2kh_closed_forms_over_ring_teeth_and_efficiencies(backend) -> None:
-    # REFERENCE §C: sun -> carrier, ring fixed: ratio 1 + k, efficiency (1 + η0 k)/(1 + k)
+    # 2K-H closed form: sun -> carrier, ring fixed: ratio 1 + k, efficiency (1 + η0 k)/(1 + k)
     z_ring = np.array([48, 60, 72, 96, 120])[:, None]
     eta = np.array([0.9, 0.95, 0.98, 1.0])[None, :]
     r = sweep(model("planetary_2kh_sun_to_carrier.yaml"),
@@ -113,7 +113,7 @@ def test_2kh_carrier_to_sun_and_internal_sign_from_teeth() -> None:
 
 def test_planet_teeth_enter_an_external_and_an_internal_mesh() -> None:
     # The planet meshes the sun (external, -z_p/z_s) and the ring (internal, +z_r/z_p):
-    # the train's ratio and efficiency do not depend on z_p (REFERENCE §C) ...
+    # the train's ratio and efficiency do not depend on z_p (2K-H closed form) ...
     r = sweep(model("planetary_2kh_sun_to_carrier.yaml"),
               {"components.planet.teeth": np.arange(10, 40)})
     np.testing.assert_allclose(r.ratio, 4.0, rtol=REL)
@@ -465,6 +465,6 @@ def test_benchmark_closed_form_equals_single_solves() -> None:
         assert hand["loss_12"][j] == pytest.approx(single.element(0).loss, rel=1e-11)
         assert hand["loss_45"][j] == pytest.approx(single.element(1).loss, rel=1e-10)
         assert [e.driver for e in single.meshes] == ["1", "5"]   # the derived pattern
-    # REFERENCE B: z = 12, 36, 39, 40 and η1 = η2 = 0.94
+    # Wang (2021), Table 1: z = 12, 36, 39, 40 and η1 = η2 = 0.94
     assert bench.closed_form(12, 36, 39, 40, 0.94, 0.94)["efficiency"] == \
         pytest.approx(0.287376, abs=5e-7)

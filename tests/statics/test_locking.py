@@ -163,3 +163,28 @@ def _loss_of(model, pattern: dict[int, int]) -> float:
     forces = solve_equilibrium(model, elements, loads, factors).forces
     rel = np.array([kin.body_speeds[e.body_a] - kin.body_speeds[e.body_c] for e in elements])
     return float(np.sum(-forces * rel * (1 - factors)))
+
+
+def test_solve_command_prints_the_verdict_and_exits_0(tmp_path, capsys) -> None:
+    """A locked train is an answer, not an error: exit 0, LOCKED in the text, the lock in
+    the JSON."""
+    import json
+
+    import yaml
+
+    from powergraph.cli.main import main
+
+    path = tmp_path / "locked.yaml"
+    path.write_text(yaml.safe_dump({
+        "name": "K-H-V back-driven, load on the crank",
+        "components": {0: {"role": "frame"}, "H": {}, "d": {"teeth": N},
+                       "pins": {"teeth": N + 1, "internal": True}},
+        "links": [{"type": "mesh", "between": ["d", "pins"], "carrier": "H",
+                   "efficiency": 0.94}, {"type": "fixed", "between": ["pins", 0]}],
+        "ports": [{"component": "d", "role": "input", "speed": 1.0},
+                  {"component": "H", "role": "output", "power": 10.0}]}))
+    assert main(["solve", str(path)]) == 0
+    assert "LOCKED" in capsys.readouterr().out
+    assert main(["solve", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["lock"]["meshes"] == [0] and data["efficiency"] == 0.0
