@@ -188,3 +188,58 @@ def test_solve_command_prints_the_verdict_and_exits_0(tmp_path, capsys) -> None:
     assert main(["solve", str(path), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["lock"]["meshes"] == [0] and data["efficiency"] == 0.0
+
+
+def _decide(model, speeds=None):
+    kin = solve_speeds(model, speeds)
+    elements, loads = elements_of(model), loads_of(model, kin)
+    rel = relative_speeds(elements, kin)
+
+    def forces(factors):
+        eq = solve_equilibrium(model, elements, loads, factors)
+        return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
+                                       model.frame_body)
+
+    return decide(model, elements, loads, rel, forces, [])
+
+
+def test_branch_and_bound_agrees_with_the_exhaustive_search(monkeypatch) -> None:
+    """The linear-programming search (used beyond 12 lossy meshes) gives the same verdicts:
+    the hand-derived lock, and the least-loss pattern of a train with two solutions."""
+    from powergraph.statics import locking
+    from powergraph.testing_trains import random_train
+
+    cases = [khv_behind_pair(0.94), random_train("0-419").model,
+             random_train("0-1436").model]
+    exhaustive = [_decide(m) for m in cases]
+    monkeypatch.setattr(locking, "EXHAUSTIVE_LIMIT", -1)
+    searched = [_decide(m) for m in cases]
+    assert [d.method for d in exhaustive] == ["exhaustive"] * 3
+    assert [d.method for d in searched] == ["branch and bound"] * 3
+    assert searched[0].chosen is None and searched[0].locking == exhaustive[0].locking == (1,)
+    for ex, bb in zip(exhaustive[1:], searched[1:]):
+        assert ex.solutions == 2 and bb.solutions >= 1
+        assert bb.chosen.pattern == ex.chosen.pattern
+        assert bb.chosen.loss == pytest.approx(ex.chosen.loss, rel=1e-9)
+
+
+def test_a_sticking_mesh_takes_a_factor_inside_its_interval() -> None:
+    """Bevel differential running straight (case, left and right all at 50 rad/s): the
+    spider gears do not turn in the case, both meshes stick. The search treats their
+    factors as free in [η, 1/η]: a solution exists, with no loss."""
+    from powergraph.statics.search import branch_and_bound, statics_of
+
+    model = pg.load_model("models/bevel_differential.yaml")
+    kin = solve_speeds(model, {"case": 50.0, "L": 50.0})
+    elements, loads = elements_of(model), loads_of(model, kin)
+    rel = relative_speeds(elements, kin)
+    assert list(rel) == [0.0, 0.0]
+    st = statics_of(model, elements, loads, rel)
+    assert st.sticking == (0, 1) and st.lossy == ()
+    found, complete = branch_and_bound(st)
+    assert complete and found and found[0].loss == pytest.approx(0.0, abs=1e-12)
+    for k, f in found[0].factors.items():
+        assert 0.97 <= f <= 1 / 0.97
+    result = pg.solve(model, speeds={"case": 50.0, "L": 50.0})
+    assert_conservation(result)
+    assert result.torques["L"] == pytest.approx(result.torques["R"], rel=1e-12)  # f = 1
