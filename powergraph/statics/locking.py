@@ -73,8 +73,12 @@ def decide(model: Model, elements: tuple[Element, ...], loads: Loads, rel: np.nd
                         method=method)
     locking, reasons = _diagnose(model, st, loads, solve)
     if not reasons:
-        reasons = ("no direction pattern is consistent with the loads (the iteration "
-                   "went through " + ", ".join(describe(p) for p in visited[:4]) + ")",)
+        locking = st.lossy
+        links = ", ".join(f"links[{st.elements[k].link}]" for k in locking)
+        reasons = (f"the friction of {links} together locks the train: no direction pattern "
+                   "is consistent with the loads (the iteration went through "
+                   + ", ".join(describe(p) for p in visited[:4])
+                   + "), and no one of them made lossless frees it",)
     return Decision(chosen=None, solutions=0, complete=complete, method=method,
                     locking=locking, reasons=reasons)
 
