@@ -79,6 +79,9 @@ def decide(model: Model, elements: tuple[Element, ...], loads: Loads, rel: np.nd
                    "is consistent with the loads (the iteration went through "
                    + ", ".join(describe(p) for p in visited[:4])
                    + "), and no one of them made lossless frees it",)
+    if not complete:
+        reasons += ("the search stopped after its limit of linear programs without finding "
+                    "a consistent pattern: the lock is likely but not proven",)
     return Decision(chosen=None, solutions=0, complete=complete, method=method,
                     locking=locking, reasons=reasons)
 
