@@ -104,3 +104,21 @@ def test_mesh_law_catches_a_sticking_factor_outside_its_interval() -> None:
     wrong = dataclasses.replace(locked.elements[0], factor=0.5)  # [η, 1/η] = [0.94, 1.064]
     with pytest.raises(AssertionError, match="outside"):
         assert_mesh_law(dataclasses.replace(locked, elements=(wrong,) + locked.elements[1:]))
+
+
+def test_random_trains_are_reproducible_and_cover_every_template() -> None:
+    from powergraph.testing_trains import TEMPLATES, random_train
+
+    assert random_train(5).data == random_train(5).data
+    trains = [random_train(seed) for seed in range(200)]
+    names = " ".join(" ".join(t.stages) for t in trains)
+    for template in ("fixed-axis pair", "2K-H s->c", "2K-H r->c", "2K-H s->r",
+                     "double-planet", "stepped-planet", "K-H-V", "RV", "Wolfrom",
+                     "Ravigneaux first", "Ravigneaux second", "Ravigneaux reverse",
+                     "closed differential", "2K-H differential", "(reversed)"):
+        assert template in names, template
+    assert {t.dof for t in trains} == {1, 2} and any(t.backdriven for t in trains)
+    assert len(TEMPLATES) == 9
+    etas = [link["efficiency"] for t in trains for link in t.data["links"]
+            if "efficiency" in link]
+    assert 0.90 <= min(etas) and max(etas) <= 1.0
