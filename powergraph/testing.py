@@ -8,7 +8,13 @@ After a solve these must hold whatever the topology:
 - every Willis row, coupling and the frame's zero speed (``assert_kinematics``);
 - every body is in torque equilibrium (``assert_equilibrium``);
 - every loss is >= 0, and each mesh passes power from its driver with its basic
-  efficiency in its carrier's frame (``assert_mesh_law``).
+  efficiency in its carrier's frame, or passes nothing with its factor inside
+  ``[η, 1/η]`` (it sticks) (``assert_mesh_law``);
+- a locked train (``result.lock``) is at rest: every speed and power is zero, every mesh
+  sticks, and the loads are held in equilibrium (``assert_locked``).
+
+:func:`consistent_patterns` is a deliberately plain, independent search over every
+driver pattern, for checking the solver's verdicts on small trains (docs/locking.md).
 
 Examples
 --------
@@ -102,6 +108,10 @@ def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
         fed_b = e.ratio * e.factor * e.force * (kin.body_speeds[body_b] - w_c)
         if e.driver is None:
             _close(fed_a, 0.0, scale, rtol, f"links[{e.link}] passes power but has no driver")
+            low, high = min(e.efficiency, 1.0 / e.efficiency), max(e.efficiency, 1.0 / e.efficiency)
+            if not low * (1 - rtol) <= e.factor <= high * (1 + rtol):
+                raise AssertionError(f"links[{e.link}] sticks with factor {e.factor!r} "
+                                     f"outside [η, 1/η] = [{low!r}, {high!r}]")
             continue
         fed_in, fed_out = (fed_a, -fed_b) if e.driver == e.a else (fed_b, -fed_a)
         if fed_in < -rtol * scale:
@@ -111,9 +121,75 @@ def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
         _close(e.carrier_frame_power, fed_in, scale, rtol, f"links[{e.link}] virtual power")
 
 
+def assert_locked(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """A locked result is at rest: zero speeds, zero powers and losses, efficiency 0, no
+    mesh with a driver, and a reason naming links of the model."""
+    lock = result.lock
+    if lock is None:
+        return
+    if any(w != 0.0 for w in result.kinematics.body_speeds.values()):
+        raise AssertionError("a locked train must be at rest (all speeds 0)")
+    if result.input_power or result.output_power or result.total_loss or result.efficiency:
+        raise AssertionError("a locked train at rest passes no power")
+    if not result.self_locking:
+        raise AssertionError("a locked train must report self_locking")
+    for e in result.elements:
+        if e.driver is not None or e.carrier_frame_power or e.loss:
+            raise AssertionError(f"links[{e.link}] of a locked train must stick")
+    links = {link.index for link in result.model.links}
+    if not lock.reasons or not set(lock.meshes) <= links:
+        raise AssertionError("a lock must give a reason and name links of the model")
+
+
+def consistent_patterns(model, speeds=None, tolerance: float = 1e-9) -> list[dict[int, int]]:
+    """Every self-consistent driver pattern, by plain enumeration (2^m torque balances for
+    m moving lossy elements; keep m small): ``[{link index: +1 (a drives) / -1}]``,
+    one per distinct solution (elements passing no power are left out of the dicts, so
+    patterns differing only there count once).
+
+    Independent of the solver's search: it only shares the kinematics and the torque
+    balance. A pattern is consistent when every lossy element passes power the assumed
+    way, to ``tolerance`` times the largest carrier-frame power of the pattern.
+
+    Examples
+    --------
+    >>> import powergraph as pg
+    >>> consistent_patterns(pg.load_model("models/cycloid_khv.yaml"))   # doctest: +SKIP
+    [{0: -1}]
+    """
+    import itertools
+
+    import numpy as np
+
+    from powergraph.kinematics import elements_of, solve_speeds
+    from powergraph.statics.equilibrium import loads_of, solve_equilibrium
+
+    kin = solve_speeds(model, speeds)
+    elements = elements_of(model)
+    loads = loads_of(model, kin)
+    rel = np.array([kin.body_speeds[e.body_a] - kin.body_speeds[e.body_c] for e in elements])
+    top = max(abs(w) for w in kin.body_speeds.values())
+    lossy = [k for k, e in enumerate(elements) if e.efficiency < 1 and abs(rel[k]) > 1e-12 * top]
+    found: dict[tuple, dict[int, int]] = {}
+    for codes in itertools.product((1, -1), repeat=len(lossy)):
+        factors = np.ones(len(elements))
+        for k, code in zip(lossy, codes):
+            eta = elements[k].efficiency
+            factors[k] = eta if code > 0 else 1.0 / eta
+        forces = solve_equilibrium(model, elements, loads, factors).forces
+        power = -forces * rel
+        scale = max(float(np.max(np.abs(power))), 1e-300)
+        if all(code * power[k] >= -tolerance * scale for k, code in zip(lossy, codes)):
+            passing = {elements[k].link: code for k, code in zip(lossy, codes)
+                       if abs(power[k]) > tolerance * scale}
+            found.setdefault(tuple(sorted(passing.items())), passing)
+    return list(found.values())
+
+
 def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:
     """All of the above, with the flow balance checked in the ground frame and in the frame
-    of every body."""
+    of every body; a locked result is also checked to be at rest (``assert_locked``)."""
+    assert_locked(result, rtol)
     assert_kinematics(result, rtol)
     assert_equilibrium(result, rtol)
     assert_power_balance(result, rtol)

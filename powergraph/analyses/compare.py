@@ -38,7 +38,10 @@ class ComparisonRow:
     """One train's figures of merit (powers in W, volume in mm³, density in kW/L).
 
     ``backdrive_efficiency`` is None (with ``backdrive_note``) where back-driving is not
-    defined (several inputs or outputs) or has no consistent solution.
+    defined (several inputs or outputs). A self-locking back-drive keeps its formal
+    efficiency (<= 0) with ``backdrive_self_locking`` True; a back-drive that locks
+    (no consistent direction pattern: docs/locking.md) has efficiency 0 and the locking
+    reason in ``backdrive_note``.
     """
 
     name: str
@@ -85,11 +88,14 @@ class ComparisonTable:
         return {"rows": [row.to_dict() for row in self.rows]}
 
     def text_report(self) -> str:
-        """Aligned text table, one row per train; columns with no data are left out."""
+        """Aligned text table, one row per train; columns with no data are left out.
+        A self-locking direction shows "locks" instead of its formal (<= 0) efficiency,
+        which stays in :meth:`to_dict` (docs/locking.md)."""
         columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in self.rows)]
         cells = [[header for _, header, _ in columns]]
         for row in self.rows:
-            cells.append([_cell(getattr(row, key), fmt) for key, _, fmt in columns])
+            cells.append(["locks" if key in LOCKING and getattr(row, LOCKING[key])
+                          else _cell(getattr(row, key), fmt) for key, _, fmt in columns])
         return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
@@ -97,6 +103,10 @@ class ComparisonTable:
         from powergraph.plot.compare import plot_comparison
 
         return plot_comparison(self.rows, ax=ax, **kwargs)
+
+
+#: Efficiency columns shown as "locks" where the train self-locks that way.
+LOCKING = {"efficiency": "self_locking", "backdrive_efficiency": "backdrive_self_locking"}
 
 
 def _cell(value: Any, fmt: str) -> str:
@@ -154,7 +164,8 @@ def _backdrive(model: Model) -> tuple[float | None, bool | None, str | None]:
         result = solve(backdriven(model))
     except PowerGraphError as exc:
         return None, None, str(exc)
-    return result.efficiency, result.self_locking, None
+    note = f"locks: {result.lock.reason}" if result.lock is not None else None
+    return result.efficiency, result.self_locking, note
 
 
 def _volume(model: Model, output_power: float) -> tuple[float | None, float | None]:

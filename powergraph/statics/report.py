@@ -10,9 +10,10 @@ RPM = 60.0 / (2.0 * math.pi)
 
 
 def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
-    """The ``solve --json`` keys (docs/format.md), plus ``passes`` and
-    ``load_sharing_assumed``. Per mesh, ``virtual_power`` is the power the mesh passes in
-    its carrier's frame (``ElementFlow.carrier_frame_power``).
+    """The keys of ``solve --json`` (docs/format.md), plus ``passes``,
+    ``load_sharing_assumed``, ``lock`` (null, or why the train cannot move as asked:
+    docs/locking.md) and ``directions`` (null, or how the search found the directions
+    when the fixed-point iteration cycled).
 
     Component ids in lists (``between``, ``carrier``, ``driver``) are written as in the
     model file; dictionary keys are their string forms.
@@ -42,6 +43,8 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,
         **_friction_dict(result),
+        "lock": result.lock.to_dict() if result.lock is not None else None,
+        "directions": result.search.to_dict() if result.search is not None else None,
     }
 
 
@@ -54,6 +57,28 @@ def _friction_dict(result: PowerFlowResult) -> dict[str, Any]:
 
 def _fmt_power(watts: float) -> str:
     return f"{watts / 1000:,.4f} kW" if abs(watts) >= 1000 else f"{watts:,.4f} W"
+
+
+def _verdict_lines(result: PowerFlowResult) -> list[str]:
+    """LOCKED (with the meshes and why), SELF-LOCKING, or the search's finding."""
+    lock, search = result.lock, result.search
+    if lock is not None:
+        lines = ["LOCKED: the train cannot move as asked under these loads; it stays at rest",
+                 "  (every mesh sticks; the torques shown are the lossless holding torques,",
+                 "  one of the set static friction can hold: docs/locking.md)"]
+        if lock.meshes:
+            lines.append("  locking " + ("mesh" if len(lock.meshes) == 1 else "meshes") + ": "
+                         + ", ".join(f"links[{k}]" for k in lock.meshes))
+        lines += [f"  - {reason}" for reason in lock.reasons]
+        return lines
+    lines = []
+    if result.self_locking:
+        lines.append("SELF-LOCKING: the input cannot drive the output in this direction "
+                     "(the output must be driven too)")
+    if search is not None and search.solutions > 1:
+        lines.append(f"several consistent power-direction patterns ({search.solutions}"
+                     f"{'' if search.complete else '+'}): the one of least total loss is shown")
+    return lines
 
 
 def text_report(result: PowerFlowResult) -> str:
@@ -69,8 +94,7 @@ def text_report(result: PowerFlowResult) -> str:
               f"output power                {_fmt_power(result.output_power)}",
               f"losses                      {_fmt_power(result.total_loss)}",
               f"efficiency                  {result.efficiency * 100:.4f} %"]
-    if result.self_locking:
-        lines.append("SELF-LOCKING: the input cannot drive the output in this direction")
+    lines += _verdict_lines(result)
     if result.circulating_power > 0:
         lines.append(f"circulating power           {_fmt_power(result.circulating_power)}")
     lines += ["", "speeds", f"  {'component':<24}{'rad/s':>14}{'rpm':>14}"]

@@ -37,8 +37,50 @@ class ElementFlow:
 
 
 @dataclass(frozen=True)
+class Lock:
+    """Why a train cannot move as asked under its loads (docs/locking.md).
+
+    ``meshes`` are the links whose friction alone locks it (with that one lossless the
+    train moves), each explained in ``reasons``; ``asked`` is the impossible motion.
+    """
+
+    meshes: tuple[int, ...]
+    reasons: tuple[str, ...]
+    asked: Kinematics = field(repr=False)
+
+    @property
+    def reason(self) -> str:
+        return "; ".join(self.reasons)
+
+    def to_dict(self) -> dict[str, Any]:
+        speeds = {c: self.asked.body_speeds[b] for c, b in self.asked.body_of.items()}
+        return {"locked": True, "meshes": list(self.meshes), "reason": self.reason,
+                "asked_speeds": speeds,
+                "holding_torques": "lossless equilibrium (one of the static-friction set)"}
+
+
+@dataclass(frozen=True)
+class DirectionSearch:
+    """How the power directions were found when the fixed-point iteration cycled.
+
+    ``solutions`` consistent patterns were found (0: locked), by ``method``
+    ("exhaustive" or "branch and bound"); ``complete`` is False when the search stopped
+    early. With several, the least-loss one is reported (docs/locking.md).
+    """
+
+    method: str
+    solutions: int
+    complete: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"method": self.method, "solutions": self.solutions,
+                "complete": self.complete,
+                "chosen": "least total loss" if self.solutions > 1 else None}
+
+
+@dataclass(frozen=True)
 class PowerFlowResult:
-    """Everything a virtual-power solve finds (see docs/theory.md).
+    """Everything a virtual-power solve finds (docs/theory.md, docs/locking.md).
 
     Indexed by the model's component ids (strings); bodies are named like "2/3".
     Follows the result protocol :class:`powergraph.result.Result`.
@@ -65,6 +107,8 @@ class PowerFlowResult:
     #: passes of the load-dependent iteration (0 when no efficiency depends on the load).
     friction: tuple = ()
     friction_passes: int = 0
+    lock: Lock | None = None                 # set when the train cannot move as asked
+    search: DirectionSearch | None = None    # set when the fixed-point iteration cycled
 
     @property
     def name(self) -> str:
@@ -76,17 +120,21 @@ class PowerFlowResult:
 
     @property
     def ratio(self) -> float | None:
-        """Input speed / output speed (one input and one output), else None."""
-        return self.kinematics.ratio
+        """Input speed / output speed (one input and one output), else None; for a locked
+        train, that of the motion asked."""
+        return (self.lock.asked if self.lock is not None else self.kinematics).ratio
 
     @property
     def efficiency(self) -> float:
-        """Output power / input power."""
+        """Output power / input power; 0 for a locked train (it stays at rest)."""
+        if self.lock is not None:
+            return 0.0
         return self.output_power / self.input_power if self.input_power else float("nan")
 
     @property
     def self_locking(self) -> bool:
-        """True when the input cannot drive the output in the asked direction."""
+        """True when the input cannot drive the output in the asked direction: the train
+        locks, or its formal efficiency is <= 0 (the output must be driven too)."""
         return not self.efficiency > 0.0
 
     @property

@@ -1,6 +1,12 @@
-"""The virtual-power solver (DESIGN §3): torques, directions, losses, efficiency."""
+"""The virtual-power solver: torques, directions, losses, efficiency (docs/theory.md).
+
+Directions come from the fixed-point iteration; when it cycles, the complementarity
+search decides: the least-loss consistent solution, or the locking verdict with the train
+at rest (docs/locking.md).
+"""
 from __future__ import annotations
 
+import dataclasses
 from types import MappingProxyType
 from typing import Mapping
 
@@ -8,10 +14,20 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
 from powergraph.model.spec import Model
-from powergraph.statics.directions import factors_of, relative_speeds, settle
+from powergraph.statics.directions import (
+    factors_of,
+    force_scales,
+    pattern_of,
+    relative_speeds,
+    settle,
+)
+from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
 from powergraph.statics.friction import needs_friction, solve_with_friction
-from powergraph.statics.equilibrium import Equilibrium, loads_of, solve_equilibrium
-from powergraph.statics.result import ElementFlow, PowerFlowResult
+from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
+from powergraph.statics.search import Statics, refine, statics_of
+
+#: Unknowns spanning more than this range (smallest/largest) are re-solved scaled.
+WIDE_RANGE = 1e-6
 
 
 def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowResult:
@@ -35,8 +51,9 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     ------
     ModelError
         (KinematicsError, StaticsError) when speeds or loads are not determined.
-    SolveError
-        When no consistent set of power directions exists.
+
+    A train that cannot move as asked under its loads is not an error: the result has
+    ``lock`` set, the train at rest and efficiency 0 (docs/locking.md).
 
     Examples
     --------
@@ -56,18 +73,76 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     elements = elements_of(model)
     loads = loads_of(model, kin)
     rel = relative_speeds(elements, kin)
-    scale = max([abs(t * kin.body_speeds[b]) for b, t in loads.given.items()] + [1e-300])
-    tolerance = 1e-11 * scale
 
-    def forces(factors: np.ndarray) -> np.ndarray:
-        return solve_equilibrium(model, elements, loads, factors).forces
+    st = statics_of(model, elements, loads, rel)
 
-    pattern, passes = settle(forces, elements, rel, tolerance)
-    factors = factors_of(pattern, elements)
+    def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        eq = _equilibrium(model, elements, loads, factors, st)
+        return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
+                                       model.frame_body)
+
+    pattern, passes, visited = settle(forces, elements, rel)
+    if pattern is not None:
+        factors = factors_of(pattern, elements)
+        return _assemble(model, kin, elements, loads, factors, st, passes)
+    from powergraph.statics.locking import decide
+
+    decision = decide(model, elements, loads, rel, forces, visited)
+    search = DirectionSearch(method=decision.method, solutions=decision.solutions,
+                             complete=decision.complete)
+    if decision.chosen is not None:
+        return _assemble(model, kin, elements, loads, decision.chosen.factors, st, passes,
+                         search)
+    lock = Lock(meshes=tuple(elements[k].link for k in decision.locking),
+                reasons=decision.reasons, asked=kin)
+    return _at_rest(model, kin, elements, loads, passes, search, lock)
+
+
+def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
+                 factors: np.ndarray, st: Statics) -> Equilibrium:
+    """The torque balance; re-solved scaled when its unknowns span many decades, so each
+    is accurate relative to itself (a long chain's last torque, tiny efficiencies)."""
     eq = solve_equilibrium(model, elements, loads, factors)
+    values = np.abs(np.concatenate([eq.forces, [eq.external[b] for b in loads.unknown]]))
+    if eq.indeterminate or not values.size or \
+            np.min(values, initial=np.inf, where=values > 0) > WIDE_RANGE * np.max(values):
+        return eq
+    refined = refine(st, factors, np.concatenate([eq.forces,
+                                                  [eq.external[b] for b in loads.unknown]]))
+    if refined is None:
+        return eq
+    n_el = len(elements)
+    external = dict(eq.external)
+    external.update({b: float(refined[n_el + j]) for j, b in enumerate(loads.unknown)})
+    return dataclasses.replace(eq, forces=refined[:n_el], external=external)
+
+
+def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
+              factors: np.ndarray, st: Statics, passes: int,
+              search: DirectionSearch | None = None) -> PowerFlowResult:
+    """The result for consistent factors: forces, each element's driver, losses."""
+    eq = _equilibrium(model, elements, loads, factors, st)
+    scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
+    pattern = pattern_of(eq.forces, st.rel, scales)
     flows = tuple(_element_flow(model, el, force, f, code, kin)
                   for el, force, f, code in zip(elements, eq.forces, factors, pattern))
-    return _result(model, kin, flows, eq, passes)
+    return _result(model, kin, flows, eq, passes, search)
+
+
+def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads,
+             passes: int, search: DirectionSearch, lock: Lock) -> PowerFlowResult:
+    """A locked train at rest holding its loads. Every mesh sticks; the holding torques
+    are set-valued (static friction), and the lossless equilibrium (every factor 1, inside
+    each sticking mesh's ``[η, 1/η]``) is the member reported."""
+    rest = dataclasses.replace(
+        kin, body_speeds=MappingProxyType({b: 0.0 for b in kin.body_speeds}))
+    factors = np.ones(len(elements))
+    eq = solve_equilibrium(model, elements, loads, factors)
+    flows = tuple(dataclasses.replace(_element_flow(model, el, force, 1.0, 0, rest),
+                                      virtual_power=0.0, loss=0.0)
+                  for el, force in zip(elements, eq.forces))
+    result = _result(model, rest, flows, eq, passes, search)
+    return dataclasses.replace(result, lock=lock)
 
 
 def _element_flow(model: Model, el: Element, force: float, factor: float, code: int,
@@ -90,7 +165,7 @@ def _element_flow(model: Model, el: Element, force: float, factor: float, code: 
 
 
 def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: Equilibrium,
-            passes: int) -> PowerFlowResult:
+            passes: int, search: DirectionSearch | None = None) -> PowerFlowResult:
     def fed(port) -> float:
         body = model.body_of[port.component]
         return eq.external.get(body, 0.0) * kin.body_speeds[body]
@@ -100,5 +175,5 @@ def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: E
     return PowerFlowResult(
         model=model, kinematics=kin, elements=flows,
         external_torques=MappingProxyType(dict(eq.external)), input_power=float(input_power),
-        output_power=float(output_power), total_loss=float(sum(f.loss for f in flows)),
-        passes=passes, load_sharing_assumed=eq.indeterminate)
+        output_power=float(output_power) + 0.0, total_loss=float(sum(f.loss for f in flows)),
+        passes=passes, load_sharing_assumed=eq.indeterminate, search=search)

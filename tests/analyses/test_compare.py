@@ -65,7 +65,7 @@ ports: [{component: H, role: input, speed: 100, power: 10}, {component: out, rol
     assert row.backdrive_self_locking is True
 
 
-def test_compare_json_has_the_issue_keys(capsys) -> None:
+def test_compare_json_has_the_documented_keys(capsys) -> None:
     paths = [str(MODELS / "rv40e.yaml"), str(MODELS / "wolfrom_3k.yaml")]
     assert main(["compare", *paths, "--json", "--mesh-efficiency", "0.98"]) == 0
     rows = json.loads(capsys.readouterr().out)
@@ -100,3 +100,30 @@ def test_volume_and_power_density_columns_when_geometry_is_present() -> None:
     assert row.power_density_kw_per_l == pytest.approx(
         pg.solve(rv).output_power / 1000 / (total / 1e6), rel=1e-12)
     assert plain.volume_mm3 is None and plain.power_density_kw_per_l is None
+
+
+def test_table_shows_locks_for_a_self_locking_back_drive(capsys) -> None:
+    """Cycloid K-H-V, N = 119 at η0 = 0.98, back-driven: formal efficiency
+    (N + 1) η0 - N = 117.6 - 119 = -1.4 (see test_unseen_khv_stage_self_locks_backwards):
+    the table says "locks", the JSON keeps the formal value."""
+    path = str(MODELS / "cycloid_khv_119.yaml")
+    assert main(["compare", path, "--mesh-efficiency", "0.98"]) == 0
+    text = capsys.readouterr().out
+    line = next(x for x in text.splitlines() if x.startswith("Cycloid"))
+    assert "locks" in line and "%" in line and "-140" not in line
+    assert main(["compare", path, "--mesh-efficiency", "0.98", "--json"]) == 0
+    row, = json.loads(capsys.readouterr().out)
+    assert row["backdrive_efficiency"] == pytest.approx(120 * 0.98 - 119, rel=1e-9)
+    assert row["backdrive_self_locking"] is True
+
+
+def test_a_locked_back_drive_has_efficiency_0_and_the_reason() -> None:
+    """RV-40E with a cycloid-pin mesh at 0.2, back-driven: no consistent direction
+    pattern (the brute force of powergraph.testing agrees), so the back-drive locks."""
+    from powergraph.testing import consistent_patterns
+
+    rv = pg.load_model(MODELS / "rv40e.yaml").with_link(1, efficiency=0.2)
+    assert consistent_patterns(backdriven(rv)) == []
+    row, = compare_models([rv])
+    assert row.backdrive_efficiency == 0.0 and row.backdrive_self_locking is True
+    assert row.backdrive_note.startswith("locks: links[")

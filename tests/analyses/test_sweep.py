@@ -1,8 +1,8 @@
-"""Compiled, vectorised sweeps (issue 9) against single solves and closed forms.
+"""Compiled, vectorised sweeps against single solves and closed forms.
 
 Expected values come from ``powergraph.solve`` on the modified model (the validated single
 solver: ``model.with_link``/``with_port``, or the model file rebuilt with new teeth by
-``model_from_dict``), from the closed forms of REFERENCE.md §C and the model files'
+``model_from_dict``), from the planetary closed forms (tests/data/reference_trains.yaml) and the model files'
 descriptions, or from hand derivations — never from the sweep's own output.
 """
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pytest
 
 import powergraph as pg
 from powergraph.analyses.sweep import STATUS, cartesian, compile_sweep, parse_set, sweep
-from powergraph.errors import ModelError, SolveError, StaticsError, UsageError
+from powergraph.errors import ModelError, StaticsError, UsageError
 from powergraph.kinematics import backdriven
 from powergraph.model import load_model, load_yaml_file, model_from_dict
 
@@ -71,7 +71,7 @@ def assert_matches_single(swept, j: int, single) -> None:
     assert bool(swept.self_locking.flat[j]) == single.self_locking
 
 
-# --- against REFERENCE.md --------------------------------------------------------------
+# --- against the reference values (tests/data/reference_values.md) ---------------------
 
 def test_rv_reference_b_values() -> None:
     r = sweep(model("rv40e.yaml"), {"links.1.efficiency": [0.94, 0.998]})
@@ -84,7 +84,7 @@ def test_rv_reference_b_values() -> None:
 
 @pytest.mark.parametrize("backend", ["symbolic", "numeric"])
 def test_2kh_closed_forms_over_ring_teeth_and_efficiencies(backend) -> None:
-    # REFERENCE §C: sun -> carrier, ring fixed: ratio 1 + k, efficiency (1 + η0 k)/(1 + k)
+    # 2K-H closed form: sun -> carrier, ring fixed: ratio 1 + k, efficiency (1 + η0 k)/(1 + k)
     z_ring = np.array([48, 60, 72, 96, 120])[:, None]
     eta = np.array([0.9, 0.95, 0.98, 1.0])[None, :]
     r = sweep(model("planetary_2kh_sun_to_carrier.yaml"),
@@ -113,7 +113,7 @@ def test_2kh_carrier_to_sun_and_internal_sign_from_teeth() -> None:
 
 def test_planet_teeth_enter_an_external_and_an_internal_mesh() -> None:
     # The planet meshes the sun (external, -z_p/z_s) and the ring (internal, +z_r/z_p):
-    # the train's ratio and efficiency do not depend on z_p (REFERENCE §C) ...
+    # the train's ratio and efficiency do not depend on z_p (2K-H closed form) ...
     r = sweep(model("planetary_2kh_sun_to_carrier.yaml"),
               {"components.planet.teeth": np.arange(10, 40)})
     np.testing.assert_allclose(r.ratio, 4.0, rtol=REL)
@@ -190,9 +190,8 @@ def test_trains_equal_single_solves(name, drive) -> None:
                 variant = backdriven(variant)
             variant = with_efficiencies(variant, {i: values[f"links.{i}.efficiency"][j]
                                                   for i in meshes})
-            try:
-                single = pg.solve(variant)
-            except SolveError:
+            single = pg.solve(variant)
+            if single.search is not None:  # the fixed-point iteration cycled
                 assert STATUS[swept.status[j]] in ("cycle", "unsettled")
                 continue
             assert_matches_single(swept, j, single)
@@ -271,14 +270,15 @@ def test_chunks_do_not_change_the_numbers() -> None:
 @pytest.mark.parametrize("backend", ["symbolic", "numeric"])
 def test_direction_cycles_are_flagged_not_wrong(backend) -> None:
     # Back-driven RV with a very lossy cycloid mesh: no consistent direction pattern; the
-    # single solver raises, the sweep flags the variant (NaN efficiency, converged False).
+    # single solver searches and gives the locking verdict (docs/locking.md), the sweep
+    # (fixed-point iteration only) flags the variant (NaN efficiency, converged False).
     back = backdriven(model("rv40e.yaml"))
     eta = np.array([0.1, 0.2, 0.5, 0.9])
     swept = sweep(back, {"links.1.efficiency": eta}, backend=backend)
     for j, e in enumerate(eta):
-        try:
-            single = pg.solve(back.with_link(1, efficiency=float(e)))
-        except SolveError:
+        single = pg.solve(back.with_link(1, efficiency=float(e)))
+        if single.search is not None:
+            assert single.lock is not None and single.lock.meshes
             assert not swept.converged[j]
             assert STATUS[swept.status[j]] == "cycle"
             assert np.isnan(swept.efficiency[j]) and np.isnan(swept.losses[1][j])
@@ -298,9 +298,8 @@ def test_cycles_inside_a_large_sweep() -> None:
     for j in rng.choice(20_000, 30, replace=False):
         variant = with_efficiencies(back, {0: values["links.0.efficiency"][j],
                                            1: values["links.1.efficiency"][j]})
-        try:
-            single = pg.solve(variant)
-        except SolveError:
+        single = pg.solve(variant)
+        if single.search is not None:  # cycled: the single solver searched
             assert STATUS[swept.status[j]] == "cycle"
             continue
         assert_matches_single(swept, j, single)
@@ -466,6 +465,6 @@ def test_benchmark_closed_form_equals_single_solves() -> None:
         assert hand["loss_12"][j] == pytest.approx(single.element(0).loss, rel=1e-11)
         assert hand["loss_45"][j] == pytest.approx(single.element(1).loss, rel=1e-10)
         assert [e.driver for e in single.meshes] == ["1", "5"]   # the derived pattern
-    # REFERENCE B: z = 12, 36, 39, 40 and η1 = η2 = 0.94
+    # Wang (2021), Table 1: z = 12, 36, 39, 40 and η1 = η2 = 0.94
     assert bench.closed_form(12, 36, 39, 40, 0.94, 0.94)["efficiency"] == \
         pytest.approx(0.287376, abs=5e-7)
