@@ -7,7 +7,8 @@ Layers, earliest first (docs/architecture.md)::
                   and mesh-loss physics that the model, statics and analyses share)
     1 model       powergraph.model.*            (YAML, validation, units, graph)
     2 kinematics  powergraph.kinematics.*
-    3 statics     powergraph.statics.*, powergraph.testing (checks of statics results)
+    3 statics     powergraph.statics.*, powergraph.testing (checks of statics results),
+                  powergraph.testing_trains (random valid trains for tests and benchmarks)
     4 methods     powergraph.methods.*          } the same rank: they may use each other,
     4 analyses    powergraph.analyses.*         } but only without cycles
     5 plot        powergraph.plot.*             (including the pure layout, plot.layout)
@@ -31,7 +32,8 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "powergraph"
 
 LAYERS = (("powergraph.cli", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
-          ("powergraph.analyses", 4), ("powergraph.testing", 3), ("powergraph.statics", 3),
+          ("powergraph.analyses", 4), ("powergraph.testing", 3),
+          ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
           ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0),
           ("powergraph.result", 0), ("powergraph.gears", 0), ("powergraph", 0))
 

@@ -139,7 +139,7 @@ def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads
     factors = np.ones(len(elements))
     eq = solve_equilibrium(model, elements, loads, factors)
     flows = tuple(dataclasses.replace(_element_flow(model, el, force, 1.0, 0, rest),
-                                      virtual_power=0.0, loss=0.0)
+                                      carrier_frame_power=0.0, loss=0.0)
                   for el, force in zip(elements, eq.forces))
     result = _result(model, rest, flows, eq, passes, search)
     return dataclasses.replace(result, lock=lock)
