@@ -78,32 +78,6 @@ def parse_quantity(value: object, kind: str, path: str) -> float:
     return result
 
 
-def parse_number(value: object, path: str, minimum: float | None = None,
-                 positive: bool = False, length: bool = False) -> float:
-    """A finite number from a model block (a length may also be a string with units).
-
-    >>> parse_number("5 um", "x", positive=True, length=True)
-    0.005
-    >>> parse_number(-1, "links[0].backlash_arcmin", minimum=0.0)
-    Traceback (most recent call last):
-    ...
-    powergraph.errors.ModelError: links[0].backlash_arcmin: must be >= 0, got -1
-    """
-    if length and isinstance(value, str):
-        number = parse_quantity(value, "length", path)
-    elif isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ModelError(f"must be a number, got {value!r}", path)
-    else:
-        number = float(value)
-    if not math.isfinite(number):
-        raise ModelError(f"must be finite, got {value!r}", path)
-    if positive and number <= 0:
-        raise ModelError(f"must be > 0, got {value!r}", path)
-    if minimum is not None and number < minimum:
-        raise ModelError(f"must be >= {minimum:g}, got {value!r}", path)
-    return number
-
-
 def _parse_string(text: str, kind: str, path: str) -> float:
     match = _NUMBER_UNIT.match(text)
     if match:
