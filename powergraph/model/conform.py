@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
+from typing import Any, Callable
 
 from powergraph.errors import ModelError
 from powergraph.model.schema import MODEL_SCHEMA, definition
@@ -47,35 +47,63 @@ def conform(value: Any, schema: dict, path: str = "") -> None:
     path : str
         Place of ``value`` in the model file.
     """
-    schema = _resolve(schema)
+    _checker(schema)(value, path)
+
+
+def _checker(schema: dict) -> Callable[[Any, str], None]:
+    """The check of ``schema``, compiled once into a closure (cached by identity)."""
+    hit = _CHECKERS.get(id(schema))
+    if hit is not None and hit[0] is schema:
+        return hit[1]
+    check = _compile(_resolve(schema))
+    _CHECKERS[id(schema)] = (schema, check)
+    return check
+
+
+_CHECKERS: dict[int, tuple[dict, Callable[[Any, str], None]]] = {}
+
+
+def _compile(schema: dict) -> Callable[[Any, str], None]:
     if "x-quantity" in schema:
-        _quantity(value, schema, path)
-        return
+        return lambda value, path: _quantity(value, schema, path)
     if "oneOf" in schema:
-        _one_of(value, schema, path)
-        return
+        return lambda value, path: _one_of(value, schema, path)
     if "anyOf" in schema and not _ranges_only(schema):
-        _any_of(value, schema, path)
-        return
-    if "type" in schema and not _is_type(value, schema["type"]):
-        raise _expected(value, schema, path)
-    if isinstance(value, dict):
-        _object(value, schema, path)
-    elif isinstance(value, list):
-        _array(value, schema, path)
-    elif isinstance(value, str):
-        if len(value) < schema.get("minLength", 0) or (
-                "pattern" in schema and not re.search(schema["pattern"], value)):
+        return lambda value, path: _any_of(value, schema, path)
+    types = schema.get("type")
+    obj = _object_checker(schema) if "properties" in schema or \
+        "additionalProperties" in schema else None
+    arr = _array_checker(schema) if types == "array" else None
+    text = "minLength" in schema or "pattern" in schema
+    ranged = "anyOf" in schema or bool(_RANGE_KEYS & set(schema))
+    integer, enum = types == "integer", schema.get("enum")
+
+    def check(value: Any, path: str) -> None:
+        if types is not None and not _is_type(value, types):
             raise _expected(value, schema, path)
-    elif isinstance(value, (int, float)) and not isinstance(value, bool):
-        if schema.get("type") == "integer" and not _in_range(value, schema):
+        if isinstance(value, dict):
+            if obj is not None:
+                obj(value, path)
+        elif isinstance(value, list):
+            if arr is not None:
+                arr(value, path)
+        elif isinstance(value, str):
+            if text and (len(value) < schema.get("minLength", 0) or (
+                    "pattern" in schema and not re.search(schema["pattern"], value))):
+                raise _expected(value, schema, path)
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            if integer and ranged and not _in_range(value, schema):
+                raise _expected(value, schema, path)
+            if (ranged or isinstance(value, float)):
+                _number(value, schema, path)
+        if enum is not None and value not in enum:
             raise _expected(value, schema, path)
-        _number(value, schema, path)
-    if "enum" in schema and value not in schema["enum"]:
-        raise _expected(value, schema, path)
+
+    return check
 
 
 def _resolve(schema: dict) -> dict:
+    """The schema a ``$ref`` points to (with the referring node's own annotations)."""
     while "$ref" in schema:
         target = definition(schema["$ref"].rsplit("/", 1)[1])
         extra = {k: v for k, v in schema.items() if k != "$ref"}
@@ -198,22 +226,29 @@ def _any_of(value: Any, schema: dict, path: str) -> None:
     raise _expected(value, schema, path)
 
 
-def _object(value: dict, schema: dict, path: str) -> None:
-    properties = schema.get("properties", {})
+def _object_checker(schema: dict) -> Callable[[dict, str], None]:
+    properties = {key: _checker(sub) for key, sub in schema.get("properties", {}).items()}
     extra = schema.get("additionalProperties", True)
-    for key, item in value.items():
-        if key in properties:
-            conform(item, properties[key], join_path(path, key))
-        elif extra is False:
-            raise ModelError(f"unknown field (allowed: {', '.join(sorted(properties))})",
-                             join_path(path, key))
-        elif isinstance(extra, dict):
-            conform(item, extra, join_path(path, key))
-    for key in schema.get("required", ()):
-        if key not in value:
-            raise ModelError(_missing(schema, key), join_path(path, key))
-    if len(value) < schema.get("minProperties", 0):
-        raise ModelError(f"must have at least {schema['minProperties']} entry", path)
+    extra_check = _checker(extra) if isinstance(extra, dict) else None
+    allowed = ", ".join(sorted(properties))
+    required, least = tuple(schema.get("required", ())), schema.get("minProperties", 0)
+
+    def check(value: dict, path: str) -> None:
+        for key, item in value.items():
+            sub = properties.get(key) if isinstance(key, str) else None
+            if sub is not None:
+                sub(item, f"{path}.{key}" if path else key)
+            elif extra_check is not None:
+                extra_check(item, f"{path}.{key}" if path else str(key))
+            elif extra is False:
+                raise ModelError(f"unknown field (allowed: {allowed})", join_path(path, key))
+        for key in required:
+            if key not in value:
+                raise ModelError(_missing(schema, key), join_path(path, key))
+        if len(value) < least:
+            raise ModelError(f"must have at least {least} entry", path)
+
+    return check
 
 
 def _missing(schema: dict, key: str) -> str:
@@ -222,13 +257,18 @@ def _missing(schema: dict, key: str) -> str:
     return f"missing (needed here: {needs})" + (f"; {key}: {described}" if described else "")
 
 
-def _array(value: list, schema: dict, path: str) -> None:
-    if not schema.get("minItems", 0) <= len(value) <= schema.get("maxItems", math.inf):
-        raise _expected(value, schema, path)
-    items = schema.get("items")
-    if items is not None:
-        for index, item in enumerate(value):
-            conform(item, items, f"{path}[{index}]")
+def _array_checker(schema: dict) -> Callable[[list, str], None]:
+    low, high = schema.get("minItems", 0), schema.get("maxItems", math.inf)
+    items = _checker(schema["items"]) if "items" in schema else None
+
+    def check(value: list, path: str) -> None:
+        if not low <= len(value) <= high:
+            raise _expected(value, schema, path)
+        if items is not None:
+            for index, item in enumerate(value):
+                items(item, f"{path}[{index}]")
+
+    return check
 
 
 def _discriminator(schema: dict) -> tuple[str, dict, dict | None]:

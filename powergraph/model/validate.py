@@ -16,6 +16,7 @@ from powergraph.errors import ModelError
 from powergraph.model.conform import check_document, conform
 from powergraph.model.spec import Component, Link, Model, Port
 from powergraph.model.units import parse_quantity
+from powergraph.model.yaml_loader import gc_paused
 
 _EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
 
@@ -51,6 +52,11 @@ def model_from_dict(data: Any, source: str | None = None) -> Model:
     >>> m.meshes[0].between, [b.id for b in m.bodies]
     (('1', '2'), ['0', '1', '2'])
     """
+    with gc_paused():
+        return _model(data, source)
+
+
+def _model(data: Any, source: str | None) -> Model:
     check_document(data, source)
     default_eta = float((data.get("defaults") or {}).get("mesh_efficiency", 1.0))
     components = _components(data["components"])

@@ -30,8 +30,9 @@ import gc
 import os
 import re
 import stat
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 import yaml
 from yaml import events as ev
@@ -88,6 +89,19 @@ class size_limit:
     def __exit__(self, *exc: object) -> None:
         if self.limit is not None:
             _override.pop()
+
+
+@contextmanager
+def gc_paused() -> Iterator[None]:
+    """Pause the cycle collector: reading or building a large model creates millions of
+    acyclic objects, and collections over them would make the work quadratic."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def join_path(prefix: str, key: Any) -> str:
@@ -152,10 +166,9 @@ def load_yaml_text(text: str | bytes, source: str = "<model>") -> Any:
         data = bytes(text)
     _check_text(data, source)
     loader = _Loader(data)
-    enabled = gc.isenabled()
-    gc.disable()  # a large document is millions of new objects: no cycle collection needed
     try:
-        return _Builder(loader, source).document()
+        with gc_paused():
+            return _Builder(loader, source).document()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown place"
@@ -164,8 +177,6 @@ def load_yaml_text(text: str | bytes, source: str = "<model>") -> Any:
     except yaml.YAMLError as exc:
         raise ModelError(f"invalid YAML: {' '.join(str(exc).split())}", source) from None
     finally:
-        if enabled:
-            gc.enable()
         loader.dispose()
 
 
