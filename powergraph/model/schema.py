@@ -300,8 +300,8 @@ MODEL_SCHEMA: dict[str, Any] = {
                                            "title": "efficiency",
                                            "description": "Efficiency in (0, 1]. Default "
                                                           "1."}}),
-                     _link("bearing", "A bearing: the two components turn freely relative "
-                           "to each other (no constraint, drawn only).", {}),
+                     _link("bearing", "Records which member carries which (between: [planet, "
+                           "carrier]); passes no power and sets no speed.", {}),
                  ]},
         "backlash": _BACKLASH,
         "cycloid": _CYCLOID,
