@@ -28,7 +28,7 @@ from typing import Any, Callable
 from powergraph.errors import ModelError
 from powergraph.model.schema import MODEL_SCHEMA, definition
 from powergraph.model.units import SI_UNITS, parse_quantity
-from powergraph.model.yaml_loader import join_path
+from powergraph.model.yaml_loader import brief, join_path
 
 __all__ = ["conform", "definition"]
 
@@ -136,7 +136,7 @@ def _expected(value: Any, schema: dict, path: str) -> ModelError:
         if not isinstance(value, dict):
             expect = schema.get("x-expect", "a mapping")
             return ModelError(f"must be {expect}, got {type(value).__name__}", path)
-    return ModelError(f"{_name(path)} must be {_phrase(schema)}, got {value!r}", path)
+    return ModelError(f"{_name(path)} must be {_phrase(schema)}, got {brief(value)}", path)
 
 
 def _phrase(schema: dict) -> str:
@@ -181,14 +181,14 @@ def _number(value: float, schema: dict, path: str, unit: str | None = None,
             shown: Any = None) -> None:
     shown = value if shown is None else shown
     if isinstance(value, float) and not math.isfinite(value):
-        raise ModelError(f"must be finite, got {shown!r}", path)
+        raise ModelError(f"must be finite, got {brief(shown)}", path)
     if not _in_range(value, schema):
         if "x-expect" in schema:
-            raise ModelError(f"{_name(path)} must be {schema['x-expect']}, got {shown!r}",
+            raise ModelError(f"{_name(path)} must be {schema['x-expect']}, got {brief(shown)}",
                              path)
         prefix = "" if unit is not None else f"{_name(path)} "
         unit = unit or ""
-        raise ModelError(f"{prefix}must be {_range(schema, unit, value)}, got {shown!r}",
+        raise ModelError(f"{prefix}must be {_range(schema, unit, value)}, got {brief(shown)}",
                          path)
 
 
@@ -300,7 +300,7 @@ def _one_of(value: Any, schema: dict, path: str) -> None:
         branch = table.get(value[name]) if _hashable(value[name]) else None
         if branch is None:
             title = next(iter(table.values()))["properties"][name].get("title", name)
-            raise ModelError(f"unknown {title} {value[name]!r} (allowed: {allowed})",
+            raise ModelError(f"unknown {title} {brief(value[name])} (allowed: {allowed})",
                              join_path(path, name))
     conform(value, branch, path)
 

@@ -16,7 +16,7 @@ from powergraph.errors import ModelError
 from powergraph.model.conform import check_document, conform
 from powergraph.model.spec import Component, Link, Model, Port
 from powergraph.model.units import parse_quantity
-from powergraph.model.yaml_loader import gc_paused
+from powergraph.model.yaml_loader import brief, gc_paused
 
 _EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
 
@@ -85,10 +85,10 @@ def _components(raw: Mapping) -> dict[str, Component]:
         path = f"components.{raw_id}"
         if isinstance(raw_id, bool) or not isinstance(raw_id, (int, str)) or raw_id == "":
             raise ModelError("a component id must be an integer or a non-empty string, "
-                             f"got {raw_id!r}", "components")
+                             f"got {brief(raw_id)}", "components")
         cid = str(raw_id)
         if cid in components:
-            raise ModelError(f"component id {raw_id!r} is given twice (ids compare as strings)",
+            raise ModelError(f"component id {brief(raw_id)} is given twice (ids compare as strings)",
                              path)
         components[cid] = _component(cid, raw_id, attrs or {}, path)
     frames = [c.id for c in components.values() if c.is_frame]
@@ -114,7 +114,7 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
 
 def _ref(raw: Any, components: Mapping[str, Component], path: str) -> str:
     if str(raw) not in components:
-        raise ModelError(f"unknown component {str(raw)!r}", path)
+        raise ModelError(f"unknown component {brief(str(raw))}", path)
     return str(raw)
 
 

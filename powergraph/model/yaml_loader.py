@@ -43,6 +43,8 @@ from powergraph.errors import ModelError
 MAX_ALIAS_EXPANSION = 100_000
 #: Deepest nesting of mappings and lists (a model needs about six levels).
 MAX_DEPTH = 100
+#: Longest number (in characters) read as a number: no model value needs more.
+MAX_NUMBER_DIGITS = 1000
 #: Default size limit of a model file, in bytes.
 DEFAULT_MAX_MODEL_BYTES = 10_000_000
 ENV_MAX_MODEL_BYTES = "POWERGRAPH_MAX_MODEL_BYTES"
@@ -102,6 +104,19 @@ def gc_paused() -> Iterator[None]:
     finally:
         if enabled:
             gc.enable()
+
+
+def brief(value: Any, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, for messages about hostile values.
+
+    >>> brief("x" * 100)[-30:]
+    "xxxxxxxxxxx... (102 characters)"
+    """
+    try:
+        text = repr(value)
+    except ValueError:  # an integer too long for str()
+        return f"an integer of {value.bit_length()} bits"
+    return text if len(text) <= limit else f"{text[:limit - 4]}... ({len(text)} characters)"
 
 
 def join_path(prefix: str, key: Any) -> str:
@@ -268,7 +283,7 @@ class _Builder:
                                   frame[1]) from None
             line = event.start_mark.line
             if value in frame[6]:
-                raise ModelError(f"duplicate key {value!r} (line {line + 1}; first at line "
+                raise ModelError(f"duplicate key {brief(value)} (line {line + 1}; first at line "
                                  f"{frame[6][value] + 1})", join_path(frame[1], value))
             frame[6][value] = line
             frame[4] = value
@@ -314,7 +329,8 @@ class _Builder:
         if tag is None or tag == "!":
             if not event.implicit[0]:
                 return value  # quoted: a string
-            if value.isdigit() and (value[0] != "0" or value == "0") and value.isascii():
+            if value.isdigit() and (value[0] != "0" or value == "0") and value.isascii() \
+                    and len(value) <= MAX_NUMBER_DIGITS:
                 return int(value)  # the common case, without the resolver's regexes
             tag = self.resolved.get(value)
             if tag is None:
@@ -325,6 +341,9 @@ class _Builder:
         if tag == _MERGE:
             return "<<"
         if tag in _SCALARS:
+            if len(value) > MAX_NUMBER_DIGITS:
+                raise self._error(f"a number written with {len(value)} characters is out of "
+                                  "range", event, self._child_path(stack))
             node = yaml.ScalarNode(tag, value, event.start_mark, event.end_mark)
             return _SCALARS[tag](self.loader, node)
         raise self._error(f"unsupported YAML tag {tag}", event, self._child_path(stack))
