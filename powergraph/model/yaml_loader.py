@@ -109,8 +109,10 @@ def gc_paused() -> Iterator[None]:
 def brief(value: Any, limit: int = 60) -> str:
     """``repr(value)`` cut to ``limit`` characters, for messages about hostile values.
 
-    >>> brief("x" * 100)[-30:]
-    "xxxxxxxxxxx... (102 characters)"
+    >>> brief("x" * 100)[-20:]
+    '... (102 characters)'
+    >>> len(brief("x" * 100))
+    76
     """
     try:
         text = repr(value)
