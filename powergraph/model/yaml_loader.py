@@ -205,7 +205,7 @@ class _Builder:
         self.anchors: dict[str, tuple[Any, int]] = {}
         self.open_anchors: set[str] = set()
         self.expansion = 0
-        self.resolved: dict[str, str] = {}  # plain scalar -> its resolved tag
+        self.plain: dict[str, Any] = {}  # plain scalar text -> its value
 
     def document(self) -> Any:
         get = self.loader.get_event
@@ -331,13 +331,22 @@ class _Builder:
         if tag is None or tag == "!":
             if not event.implicit[0]:
                 return value  # quoted: a string
+            known = self.plain.get(value, _NO_KEY)  # plain scalars repeat: resolve once
+            if known is not _NO_KEY:
+                return known
             if value.isdigit() and (value[0] != "0" or value == "0") and value.isascii() \
                     and len(value) <= MAX_NUMBER_DIGITS:
-                return int(value)  # the common case, without the resolver's regexes
-            tag = self.resolved.get(value)
-            if tag is None:
-                tag = self.resolved[value] = self.loader.resolve(yaml.ScalarNode, value,
-                                                                 (True, False))
+                result: Any = int(value)  # the common case, without the resolver's regexes
+            else:
+                tag = self.loader.resolve(yaml.ScalarNode, value, (True, False))
+                result = self._typed(tag, event, stack)
+            self.plain[value] = result
+            return result
+        return self._typed(tag, event, stack)
+
+    def _typed(self, tag: str, event: Any, stack: list[list]) -> Any:
+        """The value of a scalar with tag ``tag`` (plain data only)."""
+        value = event.value
         if tag == _STR or tag == _TAG + "timestamp":
             return value
         if tag == _MERGE:
