@@ -14,6 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from powergraph.cli.main import main
+from powergraph.model.units import _registry
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = sorted((ROOT / "models").glob("*.yaml"))
@@ -137,6 +138,7 @@ def _mutations(text: str, data: st.DataObject) -> str:
           suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data())
 def test_random_mutations_of_library_models_never_crash(data, tmp_path_factory) -> None:
+    _registry()  # pint's one-time start-up is not a per-file cost
     model = data.draw(st.sampled_from(MODELS))
     text = _mutations(model.read_text(), data)
     path = tmp_path_factory.mktemp("hostile") / "m.yaml"
