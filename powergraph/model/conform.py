@@ -67,7 +67,7 @@ def _compile(schema: dict) -> Callable[[Any, str], None]:
     if "x-quantity" in schema:
         return lambda value, path: _quantity(value, schema, path)
     if "oneOf" in schema:
-        return lambda value, path: _one_of(value, schema, path)
+        return _one_of_checker(schema)
     if "anyOf" in schema and not _ranges_only(schema):
         return lambda value, path: _any_of(value, schema, path)
     types = schema.get("type")
@@ -271,38 +271,32 @@ def _array_checker(schema: dict) -> Callable[[list, str], None]:
     return check
 
 
-def _discriminator(schema: dict) -> tuple[str, dict, dict | None]:
-    """(property, {value: branch}, default branch) of a ``oneOf`` (cached by id)."""
-    cached = _DISCRIMINATORS.get(id(schema))
-    if cached is not None and cached[0] is schema:
-        return cached[1]
+def _one_of_checker(schema: dict) -> Callable[[Any, str], None]:
+    """A ``oneOf`` dispatched on its discriminator: the property that is ``const`` in every
+    branch; a branch that does not require it is the default when it is absent."""
     branches = [_resolve(b) for b in schema["oneOf"]]
     name = next(k for k, v in branches[0]["properties"].items() if "const" in v)
-    table = {b["properties"][name]["const"]: b for b in branches}
-    default = next((b for b in branches if name not in b.get("required", ())), None)
-    _DISCRIMINATORS[id(schema)] = (schema, (name, table, default))
-    return name, table, default
-
-
-_DISCRIMINATORS: dict[int, tuple[dict, tuple]] = {}
-
-
-def _one_of(value: Any, schema: dict, path: str) -> None:
-    if not isinstance(value, dict):
-        raise ModelError(f"must be a mapping, got {type(value).__name__}", path)
-    name, table, default = _discriminator(schema)
+    table = {b["properties"][name]["const"]: _checker(b) for b in branches}
+    default = next((_checker(b) for b in branches if name not in b.get("required", ())),
+                   None)
     allowed = ", ".join(str(k) for k in table)
-    if name not in value:
-        if default is None:
-            raise ModelError(f"missing (one of {allowed})", join_path(path, name))
-        branch = default
-    else:
+    title = branches[0]["properties"][name].get("title", name)
+
+    def check(value: Any, path: str) -> None:
+        if not isinstance(value, dict):
+            raise ModelError(f"must be a mapping, got {type(value).__name__}", path)
+        if name not in value:
+            if default is None:
+                raise ModelError(f"missing (one of {allowed})", join_path(path, name))
+            default(value, path)
+            return
         branch = table.get(value[name]) if _hashable(value[name]) else None
         if branch is None:
-            title = next(iter(table.values()))["properties"][name].get("title", name)
             raise ModelError(f"unknown {title} {brief(value[name])} (allowed: {allowed})",
                              join_path(path, name))
-    conform(value, branch, path)
+        branch(value, path)
+
+    return check
 
 
 def _hashable(value: Any) -> bool:
