@@ -1,4 +1,10 @@
-"""``powergraph check MODEL``: validate only (and say what the train is)."""
+"""``powergraph check MODEL``: validate a model and say what the train is.
+
+Beyond the file format, ``check`` runs the train's analysis: the given speeds must
+determine the motion, and the ports' powers/torques the loads (a train with P ports and D
+degrees of freedom takes the power or torque of P - D ports), so that a model that passes
+``check`` also solves.
+"""
 from __future__ import annotations
 
 import argparse
@@ -8,19 +14,27 @@ from powergraph.cli.common import load
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("check", help="validate a model file",
-                            description="Validate a model file: format, references, and "
-                                        "that the given speeds determine the motion.")
+                            description="Validate a model file: format, references, that the "
+                                        "given speeds determine the motion and the given "
+                                        "powers/torques the loads.")
     parser.add_argument("model", help="model file (YAML)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from powergraph.kinematics import solve_speeds
+    from powergraph.statics import solve
+    from powergraph.statics.equilibrium import loads_of
 
     model = load(args.model)
     kin = solve_speeds(model)
+    needed = loads_of(model, kin).needed
+    solve(model)  # missing or contradictory loads, power directions
+    given = sum(p.power is not None or p.torque is not None for p in model.ports)
+    loads = (f"loads of {given} of {needed} port(s) given" if given
+             else "no load given (solved per watt of input)")
     meshes = len(model.meshes)
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.bodies)} bodies, {meshes} mesh{'es' if meshes != 1 else ''}, "
-          f"{kin.dof} DOF")
+          f"{kin.dof} DOF, {loads}")
     return 0

@@ -12,6 +12,7 @@ from powergraph.cli.common import check_figure_path, efficiency_arg, load, new_f
 from powergraph.errors import PowerGraphError
 
 METHODS = ("virtual-power", "wang2021")
+DPI_RANGE = (10, 1200)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -31,18 +32,21 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "method; RV-type trains)")
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="override every mesh's basic efficiency")
-    parser.add_argument("--dpi", type=_positive, default=150.0, metavar="N",
-                        help="resolution of a PNG (dots per inch, default 150)")
+    parser.add_argument("--dpi", type=_dpi, default=150.0, metavar="N",
+                        help=f"resolution of a PNG (dots per inch, {DPI_RANGE[0]}-"
+                             f"{DPI_RANGE[1]}, default 150)")
     parser.set_defaults(handler=run)
 
 
-def _positive(text: str) -> float:
+def _dpi(text: str) -> float:
+    """argparse type of --dpi: a number in DPI_RANGE (a huge figure exhausts memory)."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"must be positive, got {text}")
+    if not DPI_RANGE[0] <= value <= DPI_RANGE[1]:
+        raise argparse.ArgumentTypeError(f"must be between {DPI_RANGE[0]} and {DPI_RANGE[1]}, "
+                                         f"got {text}")
     return value
 
 

@@ -1,19 +1,34 @@
 """Entry point of the ``powergraph`` console script.
 
-Exit status (SPEC §2): 0 success, 2 invalid model or arguments, 1 anything else.
-Users never see a traceback for a bad model or bad arguments.
+Exit status: 0 success, 2 invalid model or arguments, 1 anything else. Users never see a
+traceback for a bad model or bad arguments, nor a numpy warning: a floating-point problem
+during a command (overflow, invalid value) ends it with one clear line instead.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
 import sys
+import warnings
 
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 
 #: Command modules, in the order ``--help`` lists them. Each has register() and run().
 COMMANDS = ("solve", "check", "draw", "compare", "backlash", "cycloid", "volume", "sweep",
-            "formula", "tolerance", "mesh", "map")
+            "formula", "schema", "tolerance", "mesh", "map")
+_SIZE_SUFFIXES = {"": 1, "k": 10**3, "m": 10**6, "g": 10**9}
+
+
+def _size(text: str) -> int:
+    """argparse type of --max-model-size: bytes, optionally with k, M or G (powers of 1000)."""
+    number, suffix = (text[:-1], text[-1].lower()) if text[-1:].isalpha() else (text, "")
+    try:
+        value = int(float(number) * _SIZE_SUFFIXES[suffix])
+    except (KeyError, ValueError, OverflowError):
+        raise argparse.ArgumentTypeError(f"not a size in bytes: {text!r} (e.g. 20M)") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1 byte, got {text}")
+    return value
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -23,6 +38,9 @@ def build_parser() -> argparse.ArgumentParser:
     from powergraph import __version__
 
     parser.add_argument("--version", action="version", version=f"powergraph {__version__}")
+    parser.add_argument("--max-model-size", type=_size, metavar="BYTES",
+                        help="refuse model files larger than this (default 10M, or the "
+                             "environment variable POWERGRAPH_MAX_MODEL_BYTES)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in COMMANDS:
@@ -41,12 +59,20 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        status = args.handler(args)
+        status = _run(args)
     except (ModelError, UsageError) as exc:
         print(f"powergraph: error: {exc}", file=sys.stderr)
         status = 2
     except PowerGraphError as exc:
         print(f"powergraph: error: {exc}", file=sys.stderr)
+        status = 1
+    except (FloatingPointError, RuntimeWarning, OverflowError) as exc:
+        print(f"powergraph: error: numerical problem ({exc}); the model's numbers are out of "
+              "the range this computation can handle", file=sys.stderr)
+        status = 1
+    except MemoryError:
+        print("powergraph: error: out of memory: the model or the requested output is too "
+              "large", file=sys.stderr)
         status = 1
     except KeyboardInterrupt:
         print("powergraph: interrupted", file=sys.stderr)
@@ -56,6 +82,15 @@ def main(argv: list[str] | None = None) -> int:
     if argv is None:
         sys.exit(status)
     return status
+
+
+def _run(args: argparse.Namespace) -> int:
+    """Run the command with the model size limit set and numpy warnings turned into errors."""
+    from powergraph.model.yaml_loader import size_limit
+
+    with size_limit(args.max_model_size), warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        return args.handler(args)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""Model layer: YAML reading, validation, the immutable model and its graph (SPEC §1)."""
+"""Model layer: YAML reading, validation, the immutable model and its graph (docs/format.md)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -18,7 +18,7 @@ def load_model(path: str | Path) -> Model:
     Parameters
     ----------
     path : str or Path
-        A YAML model file (SPEC §1).
+        A YAML model file (format: docs/format.md).
 
     Returns
     -------

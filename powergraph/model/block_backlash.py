@@ -1,4 +1,4 @@
-"""Schema of a mesh's ``backlash:`` block and ``backlash_arcmin:`` value (seeds/002).
+"""A mesh's ``backlash:`` block and ``backlash_arcmin:`` value (Li et al. 2012).
 
 A mesh link may carry either
 
@@ -20,7 +20,9 @@ A mesh link may carry either
 
   The ids in ``standard_M``, ``measured_M`` and ``runout`` must be exactly the two gears of
   the mesh, one internal and one external, both with ``teeth``. Lengths are numbers in mm
-  or strings with a length unit (``"5 um"``).
+  or strings with a length unit (``"5 um"``). Types and ranges are checked against the
+  model schema (:mod:`powergraph.model.schema`); this module checks what depends on the
+  mesh: the gears' ids, roles and tooth counts, and that each over-pin distance is possible.
 
 Examples
 --------
@@ -45,12 +47,7 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.units import parse_number
-
-BACKLASH_FIELDS = ("module", "pressure_angle", "pin_diameter", "standard_M", "measured_M",
-                   "runout", "bearing_clearance", "assembly")
-REQUIRED_FIELDS = ("module", "pin_diameter", "standard_M", "measured_M")
-ASSEMBLIES = ("standard", "compensated")
+from powergraph.model.units import parse_quantity
 
 
 @dataclass(frozen=True)
@@ -113,8 +110,7 @@ def validate_backlash(raw: Mapping, path: str, pair: tuple, components: Mapping)
         raise ModelError("give either backlash or backlash_arcmin on a mesh, not both",
                          f"{path}.backlash_arcmin")
     if "backlash_arcmin" in raw:
-        blocks["backlash_arcmin"] = parse_number(raw["backlash_arcmin"], f"{path}.backlash_arcmin",
-                                            minimum=0.0)
+        blocks["backlash_arcmin"] = float(raw["backlash_arcmin"])
     if "backlash" in raw:
         blocks["backlash"] = _block(raw["backlash"], f"{path}.backlash", pair, components)
     return blocks
@@ -137,35 +133,28 @@ def _roles(pair: tuple, components: Mapping, path: str) -> tuple[str, str]:
     return internal[0], external
 
 
-def _block(raw: Any, path: str, pair: tuple, components: Mapping) -> BacklashBlock:
-    if not isinstance(raw, dict):
-        raise ModelError(f"must be a mapping, got {type(raw).__name__}", path)
-    for key in raw:
-        if key not in BACKLASH_FIELDS:
-            raise ModelError(f"unknown field (allowed: {', '.join(sorted(BACKLASH_FIELDS))})",
-                             f"{path}.{key}")
-    for key in REQUIRED_FIELDS:
-        if key not in raw:
-            raise ModelError("missing (a backlash block needs module, pin_diameter, "
-                             "standard_M and measured_M)", f"{path}.{key}")
+def _length(value: Any, path: str) -> float:
+    return parse_quantity(value, "length", path)
+
+
+def _lengths(value: Any, path: str) -> tuple[float, ...]:
+    """One length or a list of them (already checked by the schema)."""
+    if isinstance(value, list):
+        return tuple(_length(v, f"{path}[{i}]") for i, v in enumerate(value))
+    return (_length(value, path),)
+
+
+def _block(raw: dict, path: str, pair: tuple, components: Mapping) -> BacklashBlock:
     internal, external = _roles(pair, components, path)
-    module = parse_number(raw["module"], f"{path}.module", positive=True, length=True)
-    alpha = parse_number(raw.get("pressure_angle", 20.0), f"{path}.pressure_angle", positive=True)
-    if alpha >= 45.0:
-        raise ModelError(f"pressure angle must be in (0, 45) degrees, got {alpha:g}",
-                         f"{path}.pressure_angle")
-    pin = parse_number(raw["pin_diameter"], f"{path}.pin_diameter", positive=True, length=True)
-    standard = _per_gear(raw["standard_M"], f"{path}.standard_M", pair,
-                         lambda v, p: parse_number(v, p, positive=True, length=True))
-    measured = _per_gear(raw["measured_M"], f"{path}.measured_M", pair, _m_list)
+    module, pin = _length(raw["module"], f"{path}.module"), _length(raw["pin_diameter"],
+                                                                      f"{path}.pin_diameter")
+    alpha = float(raw.get("pressure_angle", 20.0))
+    standard = _per_gear(raw["standard_M"], f"{path}.standard_M", pair, _length)
+    measured = _per_gear(raw["measured_M"], f"{path}.measured_M", pair, _lengths)
     runout = _per_gear(raw.get("runout", {g: 0.0 for g in pair}), f"{path}.runout", pair,
-                       lambda v, p: parse_number(v, p, minimum=0.0, length=True))
-    bearings = _bearings(raw.get("bearing_clearance", []), f"{path}.bearing_clearance",
-                         "bearing_clearance" in raw)
-    assembly = raw.get("assembly", "standard")
-    if assembly not in ASSEMBLIES:
-        raise ModelError(f"must be one of {', '.join(ASSEMBLIES)}, got {assembly!r}",
-                         f"{path}.assembly")
+                       _length)
+    bearings = _lengths(raw["bearing_clearance"], f"{path}.bearing_clearance") \
+        if "bearing_clearance" in raw else ()
     geometry = {"module": module, "alpha": math.radians(alpha), "pin": pin}
     for gear, value in standard.items():
         _check_pin_circle(value, components[gear], geometry, f"{path}.standard_M.{gear}")
@@ -175,14 +164,11 @@ def _block(raw: Any, path: str, pair: tuple, components: Mapping) -> BacklashBlo
     return BacklashBlock(module=module, pressure_angle=alpha, pin_diameter=pin,
                          internal=internal, external=external, standard_M=standard,
                          measured_M=measured, runout=runout, bearing_clearance=bearings,
-                         assembly=assembly)
+                         assembly=raw.get("assembly", "standard"))
 
 
-def _per_gear(raw: Any, path: str, pair: tuple, convert) -> dict:
+def _per_gear(raw: dict, path: str, pair: tuple, convert) -> dict:
     """A mapping {gear id: value} over exactly the mesh's two gears."""
-    if not isinstance(raw, dict):
-        raise ModelError(f"must be a mapping {{gear id: value}} over the two gears "
-                         f"{pair[0]!r} and {pair[1]!r}", path)
     out = {}
     for key, value in raw.items():
         gear = str(key)
@@ -198,23 +184,6 @@ def _per_gear(raw: Any, path: str, pair: tuple, convert) -> dict:
             raise ModelError("missing (give a value for each gear of the mesh)",
                              f"{path}.{gear}")
     return out
-
-
-def _m_list(raw: Any, path: str) -> tuple[float, ...]:
-    values = raw if isinstance(raw, list) else [raw]
-    if not values:
-        raise ModelError("must be a non-empty list of over-pin distances (mm)", path)
-    return tuple(parse_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
-                         positive=True, length=True) for i, v in enumerate(values))
-
-
-def _bearings(raw: Any, path: str, given: bool) -> tuple[float, ...]:
-    values = raw if isinstance(raw, list) else [raw]
-    if given and not values:
-        raise ModelError("must be a non-empty list of radial clearances u_r (mm); "
-                         "leave the field out when there are none", path)
-    return tuple(parse_number(v, f"{path}[{i}]" if isinstance(raw, list) else path,
-                         minimum=0.0, length=True) for i, v in enumerate(values))
 
 
 def _check_pin_circle(m_value: float, gear, geometry: Mapping, path: str) -> None:

@@ -1,4 +1,4 @@
-"""Schema of a mesh's ``cycloid:`` block (seeds/003, Csobán 2021).
+"""A mesh's ``cycloid:`` block (Csobán 2021).
 
 A cycloid-disc / pin-ring mesh may carry the data of its ratio-fluctuation analysis
 (:mod:`powergraph.analyses.cycloid`)::
@@ -15,7 +15,9 @@ A cycloid-disc / pin-ring mesh may carry the data of its ratio-fluctuation analy
 
 Lengths are numbers in mm or strings with a length unit (``"4.5 um"``). The mesh must be a
 cycloid pair: one external gear (the disc, ``teeth`` z1 ≥ 3) and one internal gear (the pin
-ring) with exactly one more tooth. Undercut of the profile is checked by the analysis.
+ring) with exactly one more tooth. Types and ranges are checked against the model schema
+(:mod:`powergraph.model.schema`); this module checks the pair. Undercut of the profile is
+checked by the analysis.
 
 Examples
 --------
@@ -37,10 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.units import parse_number
-
-CYCLOID_FIELDS = ("module", "profile_error", "shift", "rc")
-REQUIRED_FIELDS = ("module", "profile_error")
+from powergraph.model.units import parse_quantity
 
 
 @dataclass(frozen=True)
@@ -84,36 +83,19 @@ def validate_cycloid(raw: Any, path: str, pair: tuple, components: Mapping) -> C
     Raises
     ------
     ModelError
-        Unknown or missing keys, non-numbers, impossible values, or a mesh that is not a
-        cycloid pair, with the place (``links[1].cycloid.shift``).
+        Unknown or missing keys, non-numbers, impossible values (checked against the
+        schema), or a mesh that is not a cycloid pair, with the place
+        (``links[1].cycloid.shift``).
     """
-    if not isinstance(raw, dict):
-        raise ModelError(f"must be a mapping with {', '.join(CYCLOID_FIELDS)}, "
-                         f"got {type(raw).__name__}", path)
-    for key in raw:
-        if key not in CYCLOID_FIELDS:
-            raise ModelError(f"unknown field (allowed: {', '.join(sorted(CYCLOID_FIELDS))})",
-                             f"{path}.{key}")
-    for key in REQUIRED_FIELDS:
-        if key not in raw:
-            raise ModelError("missing (a cycloid block needs module and profile_error)",
-                             f"{path}.{key}")
+    from powergraph.model.conform import conform, definition
+
+    conform(raw, definition("cycloid"), path)
     disc, ring = _roles(pair, components, path)
-    module = parse_number(raw["module"], f"{path}.module", length=True)
-    if module <= 0:
-        raise ModelError(f"must be > 0 mm, got {raw['module']!r}", f"{path}.module")
-    error = parse_number(raw["profile_error"], f"{path}.profile_error", length=True)
-    if error < 0:
-        raise ModelError(f"must be >= 0 mm, got {raw['profile_error']!r}",
-                         f"{path}.profile_error")
-    shift = parse_number(raw.get("shift", 0.3), f"{path}.shift")
-    if not 0.0 < shift < 1.0:
-        raise ModelError(f"must be in (0, 1), got {raw['shift']!r}", f"{path}.shift")
-    rc = parse_number(raw.get("rc", 1.0), f"{path}.rc")
-    if rc <= 0:
-        raise ModelError(f"must be > 0, got {raw['rc']!r}", f"{path}.rc")
-    return CycloidBlock(module=module, profile_error=error, disc=disc, ring=ring,
-                        teeth=components[disc].teeth, shift=shift, rc=rc)
+    return CycloidBlock(module=parse_quantity(raw["module"], "length", f"{path}.module"),
+                        profile_error=parse_quantity(raw["profile_error"], "length",
+                                                     f"{path}.profile_error"),
+                        disc=disc, ring=ring, teeth=components[disc].teeth,
+                        shift=float(raw.get("shift", 0.3)), rc=float(raw.get("rc", 1.0)))
 
 
 def _roles(pair: tuple, components: Mapping, path: str) -> tuple[str, str]:

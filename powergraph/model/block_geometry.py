@@ -1,8 +1,8 @@
-"""Schema of ``components.ID.geometry``: the dimensions of the volume formulas (seeds/004).
+"""``components.ID.geometry``: the dimensions of the volume formulas (Pan & Wang 2019).
 
 Pan & Wang (2019) give one volume formula per kind of RV-reducer part (Eqs. 1–7). A geometry
 block says which formula applies with ``shape:`` and gives that formula's dimensions in plain
-words. Lengths are in mm: a number (mm) or a string with units (``"12 mm"``, ``"1.2 cm"``).
+words (a block without ``shape`` on a component with teeth is a gear). Lengths are in mm: a number (mm) or a string with units (``"12 mm"``, ``"1.2 cm"``).
 Counts are integers. Tooth numbers are never repeated here: the analysis reads the
 component's own ``teeth`` (and ``count`` for identical parts in parallel).
 
@@ -39,7 +39,7 @@ Examples
 ...                   "components.1.geometry")
 Traceback (most recent call last):
 ...
-powergraph.errors.ModelError: components.1.geometry.module: must be > 0 mm, got -1.0
+powergraph.errors.ModelError: components.1.geometry.module: must be > 0 mm, got -1
 """
 from __future__ import annotations
 
@@ -254,6 +254,10 @@ Geometry = (GearGeometry | CycloidDiscGeometry | NeedleGearGeometry | Crankshaft
 def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Geometry:
     """Validate a component's ``geometry`` block into an immutable dataclass.
 
+    The block's format (shapes, keys, types, ranges) is checked against the model schema
+    (:mod:`powergraph.model.schema`); this adds the dimension checks of each shape. A
+    block without ``shape`` on a component with teeth is a gear.
+
     Parameters
     ----------
     raw : dict
@@ -283,57 +287,31 @@ def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Geometry
     ...     "journal_length": 10, "journals": 2}, "components.3.geometry")
     >>> g.journals, g.to_dict()["shape"]
     (2, 'crankshaft')
+    >>> validate_geometry({"module": 2, "face_width": 10, "bore_radius": 5},
+    ...                   "components.1.geometry", teeth=30).shape
+    'gear'
     """
-    if not isinstance(raw, dict):
-        raise ModelError(f"geometry must be a mapping, got {type(raw).__name__}", path)
-    cls = _shape_class(raw, path)
-    known = {f.name for f in fields(cls)}
-    for key in raw:
-        if key != "shape" and key not in known:
-            raise ModelError(f"unknown field for shape {cls.shape} "
-                             f"(allowed: shape, {', '.join(sorted(known))})", f"{path}.{key}")
-    values = {}
-    for spec in fields(cls):
-        if spec.name not in raw:
-            raise ModelError(f"missing: shape {cls.shape} needs {_describe(spec)}",
-                             f"{path}.{spec.name}")
-        values[spec.name] = _value(raw[spec.name], spec, f"{path}.{spec.name}")
-    geometry = cls(**values)
+    from powergraph.model.conform import conform, definition
+
+    if isinstance(raw, dict) and "shape" not in raw and teeth is None:
+        raise ModelError(f"missing: say which formula applies (one of {', '.join(SHAPES)}); "
+                         "it may be left out only on a component with teeth (a gear)",
+                         f"{path}.shape")
+    conform(raw, definition("geometry"), path)
+    cls = SHAPES[raw.get("shape", "gear")]
+    geometry = cls(**{spec.name: _value(raw[spec.name], spec, f"{path}.{spec.name}")
+                      for spec in fields(cls)})
     geometry.check(path)
     if teeth is not None:
         geometry.check_teeth(teeth, path)
     return geometry
 
 
-def _shape_class(raw: dict, path: str) -> type:
-    names = ", ".join(SHAPES)
-    if "shape" not in raw:
-        raise ModelError(f"missing: say which formula applies (one of {names})",
-                         f"{path}.shape")
-    shape = raw["shape"]
-    if not isinstance(shape, str) or shape not in SHAPES:
-        raise ModelError(f"unknown shape {shape!r} (allowed: {names})", f"{path}.shape")
-    return SHAPES[shape]
-
-
-def _describe(spec: Any) -> str:
-    symbol = f" ({spec.metadata['symbol']})" if spec.metadata["symbol"] else ""
-    return f"{spec.name}{symbol}: {spec.metadata['doc']}"
-
-
 def _value(raw: Any, spec: Any, path: str) -> Any:
+    """A schema-checked value as its field's type (lengths in mm, counts, ids as text)."""
     kind = spec.metadata["kind"]
     if kind == "component":
-        if isinstance(raw, bool) or not isinstance(raw, (int, str)) or raw == "":
-            raise ModelError(f"expected a component id, got {raw!r}", path)
         return str(raw)
     if kind == "count":
-        if isinstance(raw, bool) or not isinstance(raw, int) or raw < spec.metadata["min"]:
-            raise ModelError(f"must be an integer >= {spec.metadata['min']}, got {raw!r}", path)
         return raw
-    value = parse_quantity(raw, "length", path)
-    if spec.metadata["min"] == POSITIVE and value <= 0:
-        raise ModelError(f"must be > 0 mm, got {value!r}", path)
-    if value < 0:
-        raise ModelError(f"must be >= 0 mm, got {value!r}", path)
-    return value
+    return parse_quantity(raw, "length", path)

@@ -1,10 +1,14 @@
-"""Optional analysis blocks in model files, each validated by its own schema module.
+"""Optional analysis blocks in model files; their format is part of the model schema
+(:mod:`powergraph.model.schema`), their semantic checks live in one module each:
 
-- ``components.ID.geometry`` (volume, seeds/004): :mod:`powergraph.model.block_geometry`
-- ``links[i].backlash`` / ``links[i].backlash_arcmin`` (seeds/002):
+- ``components.ID.geometry`` (volume, docs/volume.md): :mod:`powergraph.model.block_geometry`
+- ``links[i].backlash`` / ``links[i].backlash_arcmin`` (docs/backlash.md):
   :mod:`powergraph.model.block_backlash`
-- ``links[i].cycloid`` (seeds/003): :mod:`powergraph.model.block_cycloid`
-- top-level ``tolerances`` (PATH -> distribution): :mod:`powergraph.analyses.tolerance.spec`
+- ``links[i].cycloid`` (docs/cycloid.md): :mod:`powergraph.model.block_cycloid`
+- ``links[i].friction`` with ``links[i].geometry`` (docs/losses.md):
+  :mod:`powergraph.model.block_friction`
+- top-level ``tolerances`` (PATH -> distribution, docs/tolerance.md):
+  :mod:`powergraph.analyses.tolerance.spec`
 
 The model layer validates them (so ``powergraph check`` catches every mistake) and stores
 the result; the analyses read them.
@@ -18,7 +22,7 @@ from powergraph.model.spec import Component
 
 
 def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Any:
-    """Validate a component's ``geometry`` block (see :mod:`block_geometry`); the
+    """Validate a component's ``geometry`` block (see :mod:`.block_geometry`); the
     component's teeth let checks such as "bore inside the root circle" run at load time."""
     from powergraph.model.block_geometry import validate_geometry as validate
 

@@ -77,7 +77,7 @@ def check_topology(model: Model) -> None:
 
 
 def to_networkx(model: Model) -> "nx.MultiGraph":
-    """The model as a networkx MultiGraph (SPEC §1: components are nodes, links are edges).
+    """The model as a networkx MultiGraph (components are nodes, links are edges).
 
     Node attributes are the component's fields plus ``body``; edge attributes are the
     link's fields (``type``, ``carrier``, ``efficiency``, ``ratio``), keyed by link index.

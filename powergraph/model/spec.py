@@ -1,4 +1,4 @@
-"""The validated, immutable gear-train model (SPEC §1).
+"""The validated, immutable gear-train model (file format: docs/format.md).
 
 A :class:`Model` is built by :func:`powergraph.model.model_from_dict` or
 :func:`powergraph.model.load_model`; every solver takes it and never changes it.
@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -106,29 +107,35 @@ class Model:
     source: str | None = None
     tolerances: Any = None  # top-level ``tolerances:`` (powergraph.analyses.tolerance.spec)
 
-    @property
+    # Derived views are computed once per model (cached_property writes the instance's
+    # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
+    @cached_property
     def frame(self) -> str:
         """Id of the frame component."""
         return next(c.id for c in self.components.values() if c.is_frame)
 
-    @property
+    @cached_property
     def frame_body(self) -> str:
         return self.body_of[self.frame]
 
-    @property
+    @cached_property
     def meshes(self) -> tuple[Link, ...]:
         return tuple(link for link in self.links if link.type == "mesh")
 
-    @property
+    @cached_property
     def inputs(self) -> tuple[Port, ...]:
         return tuple(p for p in self.ports if p.role == "input")
 
-    @property
+    @cached_property
     def outputs(self) -> tuple[Port, ...]:
         return tuple(p for p in self.ports if p.role == "output")
 
+    @cached_property
+    def _bodies_by_id(self) -> Mapping[str, Body]:
+        return MappingProxyType({b.id: b for b in self.bodies})
+
     def body(self, body_id: str) -> Body:
-        return next(b for b in self.bodies if b.id == body_id)
+        return self._bodies_by_id[body_id]
 
     def raw_id(self, component: str) -> int | str:
         return self.components[component].raw_id

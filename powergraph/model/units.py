@@ -20,6 +20,7 @@ import re
 from functools import lru_cache
 
 from powergraph.errors import ModelError
+from powergraph.model.yaml_loader import brief
 
 #: SI unit of each kind of quantity a model may carry.
 SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm"}
@@ -65,16 +66,21 @@ def parse_quantity(value: object, kind: str, path: str) -> float:
     120.0
     """
     if isinstance(value, bool):
-        raise ModelError(f"expected a {kind}, got {value!r}", path)
+        raise ModelError(f"expected a {kind}, got {brief(value)}", path)
     if isinstance(value, (int, float)):
-        result = float(value)
+        try:
+            result = float(value)
+        except OverflowError:
+            digits = int(value.bit_length() * math.log10(2)) + 1  # str() may refuse it
+            raise ModelError(f"{kind} is out of range, got an integer of about {digits} "
+                             "digits", path) from None
     elif isinstance(value, str):
         result = _parse_string(value, kind, path)
     else:
-        raise ModelError(f"expected a {kind} (number or string with units), got {value!r}",
+        raise ModelError(f"expected a {kind} (number or string with units), got {brief(value)}",
                          path)
     if not math.isfinite(result):
-        raise ModelError(f"{kind} must be finite, got {value!r}", path)
+        raise ModelError(f"{kind} must be finite, got {brief(value)}", path)
     return result
 
 
@@ -125,14 +131,14 @@ def _parse_with_pint(text: str, kind: str, path: str) -> float:
     try:
         quantity = registry.Quantity(text)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-        raise ModelError(f"unknown unit in {text!r} ({exc})", path) from None
+        raise ModelError(f"unknown unit in {brief(text)} ({exc})", path) from None
     except Exception as exc:  # pint raises assorted errors for unparsable text
-        raise ModelError(f"cannot read {text!r} as a {kind}: {exc}", path) from None
+        raise ModelError(f"cannot read {brief(text)} as a {kind}: {exc}", path) from None
     try:
         return float(quantity.to(SI_UNITS[kind]).magnitude)
     except pint.errors.DimensionalityError:
         raise ModelError(
-            f"{text!r} is not a {kind} (expected units like {SI_UNITS[kind]})", path
+            f"{brief(text)} is not a {kind} (expected units like {SI_UNITS[kind]})", path
         ) from None
 
 

@@ -1,8 +1,19 @@
-"""Strict YAML reading: duplicate keys, alias bombs and syntax errors become ModelErrors.
+"""Strict, bounded YAML reading: every problem becomes a one-line ModelError with its place.
 
-PyYAML silently keeps the last of two equal keys; in a model file that loses a component,
-so this loader refuses them. Anchors and aliases are allowed, but the document they expand
-to is bounded in size, so a "billion laughs" file fails fast instead of hanging.
+- Size: a model file larger than :func:`max_model_bytes` (10 MB unless the environment
+  variable ``POWERGRAPH_MAX_MODEL_BYTES`` or ``powergraph --max-model-size`` says otherwise)
+  is refused before it is parsed; devices and pipes are read only up to that size.
+- Text: invalid UTF-8, control characters (NUL, ``\\x01``...) and a byte-order mark after
+  the start of the file are refused with their line and column.
+- Structure: duplicate keys are refused (PyYAML silently keeps the last one, which loses a
+  component); anchors and aliases are allowed, but the nodes they add by expansion are
+  counted and bounded (:data:`MAX_ALIAS_EXPANSION`), so a "billion laughs" file fails at
+  once while a large plain file does not; nesting is bounded (:data:`MAX_DEPTH`).
+- Only plain data: strings, numbers, booleans, null, mappings and lists (a date stays text;
+  other tags are refused).
+
+The document is built directly from the parser's events with an explicit stack (libyaml's
+C parser when PyYAML has it), so loading is linear in the file size and never recurses.
 
 Examples
 --------
@@ -15,41 +26,102 @@ powergraph.errors.ModelError: a: duplicate key 'a' (line 2; first at line 1)
 """
 from __future__ import annotations
 
+import gc
+import os
+import re
+import stat
+from contextlib import contextmanager
 from pathlib import Path
+from typing import Any, Iterator
 
 import yaml
+from yaml import events as ev
 
 from powergraph.errors import ModelError
 
-#: Largest number of nodes a document may expand to once aliases are followed.
-MAX_EXPANDED_NODES = 200_000
+#: Most nodes that anchors and aliases may add to a document by expansion.
+MAX_ALIAS_EXPANSION = 100_000
+#: Deepest nesting of mappings and lists (a model needs about six levels).
+MAX_DEPTH = 100
+#: Longest number (in characters) read as a number: no model value needs more.
+MAX_NUMBER_DIGITS = 1000
+#: Default size limit of a model file, in bytes.
+DEFAULT_MAX_MODEL_BYTES = 10_000_000
+ENV_MAX_MODEL_BYTES = "POWERGRAPH_MAX_MODEL_BYTES"
+
+_Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_TAG = "tag:yaml.org,2002:"
+_MERGE = _TAG + "merge"
+_STR = _TAG + "str"
+_override: list[int] = []
 
 
-class _StrictLoader(yaml.SafeLoader):
-    """SafeLoader that refuses duplicate mapping keys."""
+def max_model_bytes() -> int:
+    """The size limit of model files in bytes (``--max-model-size``, then the environment
+    variable ``POWERGRAPH_MAX_MODEL_BYTES``, then 10 MB).
 
-    node_paths: dict = {}
-
-    def construct_mapping(self, node, deep=False):  # noqa: D401 - PyYAML hook
-        seen: dict = {}
-        for key_node, _ in node.value:
-            key = self.construct_object(key_node, deep=True)
-            try:
-                hash(key)
-            except TypeError:
-                raise ModelError(f"a mapping key must be a plain value "
-                                 f"(line {key_node.start_mark.line + 1})",
-                                 self.node_paths.get(id(node)) or None) from None
-            if key in seen:
-                raise ModelError(
-                    f"duplicate key {key!r} (line {key_node.start_mark.line + 1}; "
-                    f"first at line {seen[key] + 1})",
-                    join_path(self.node_paths.get(id(node), ""), key))
-            seen[key] = key_node.start_mark.line
-        return super().construct_mapping(node, deep=deep)
+    >>> max_model_bytes() > 0
+    True
+    """
+    if _override:
+        return _override[-1]
+    text = os.environ.get(ENV_MAX_MODEL_BYTES)
+    if text is None:
+        return DEFAULT_MAX_MODEL_BYTES
+    try:
+        value = int(text)
+    except ValueError:
+        raise ModelError(f"{ENV_MAX_MODEL_BYTES}={text!r} is not a whole number of bytes") \
+            from None
+    if value < 1:
+        raise ModelError(f"{ENV_MAX_MODEL_BYTES} must be at least 1, got {value}")
+    return value
 
 
-def join_path(prefix: str, key) -> str:
+class size_limit:
+    """Context manager setting the model size limit (used by ``--max-model-size``)."""
+
+    def __init__(self, limit: int | None) -> None:
+        self.limit = limit
+
+    def __enter__(self) -> None:
+        if self.limit is not None:
+            _override.append(self.limit)
+
+    def __exit__(self, *exc: object) -> None:
+        if self.limit is not None:
+            _override.pop()
+
+
+@contextmanager
+def gc_paused() -> Iterator[None]:
+    """Pause the cycle collector: reading or building a large model creates millions of
+    acyclic objects, and collections over them would make the work quadratic."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def brief(value: Any, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, for messages about hostile values.
+
+    >>> brief("x" * 100)[-20:]
+    '... (102 characters)'
+    >>> len(brief("x" * 100))
+    76
+    """
+    try:
+        text = repr(value)
+    except ValueError:  # an integer too long for str()
+        return f"an integer of {value.bit_length()} bits"
+    return text if len(text) <= limit else f"{text[:limit - 4]}... ({len(text)} characters)"
+
+
+def join_path(prefix: str, key: Any) -> str:
     """Path of mapping key ``key`` inside the element at ``prefix``.
 
     >>> join_path("links[2]", "carrier"), join_path("", "name"), join_path("components", 7)
@@ -58,93 +130,278 @@ def join_path(prefix: str, key) -> str:
     return f"{prefix}.{key}" if prefix else str(key)
 
 
-def _record_paths(node, prefix: str, out: dict) -> None:
-    """Map id(mapping node) -> its path in the document, for duplicate-key messages."""
-    if id(node) in out:
-        return
-    if isinstance(node, yaml.MappingNode):
-        out[id(node)] = prefix
-        for key_node, value_node in node.value:
-            key = key_node.value if isinstance(key_node, yaml.ScalarNode) else "?"
-            _record_paths(value_node, join_path(prefix, key), out)
-    elif isinstance(node, yaml.SequenceNode):
-        for index, child in enumerate(node.value):
-            _record_paths(child, f"{prefix}[{index}]", out)
+def _place(data: bytes, offset: int) -> str:
+    """'line L, column C' of byte ``offset`` (column counted in characters)."""
+    start = data.rfind(b"\n", 0, offset) + 1
+    column = len(data[start:offset].decode("utf-8", errors="replace")) + 1
+    line = data.count(b"\n", 0, offset) + 1
+    return f"line {line}, column {column}"
 
 
-def _expanded_size(node, memo: dict) -> int:
-    """Number of nodes ``node`` stands for once every alias is expanded."""
-    ident = id(node)
-    if ident in memo:
-        return memo[ident]
-    memo[ident] = 1  # guards against recursive structures
-    if isinstance(node, yaml.SequenceNode):
-        size = 1 + sum(_expanded_size(child, memo) for child in node.value)
-    elif isinstance(node, yaml.MappingNode):
-        size = 1 + sum(_expanded_size(k, memo) + _expanded_size(v, memo) for k, v in node.value)
-    else:
-        size = 1
-    size = min(size, MAX_EXPANDED_NODES + 1)
-    memo[ident] = size
-    return size
+def _check_text(data: bytes, source: str) -> None:
+    """Refuse invalid UTF-8, control characters and a byte-order mark after the start."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"not UTF-8 text: invalid byte 0x{data[exc.start]:02x} at "
+                         f"{_place(data, exc.start)}", source) from None
+    match = _BAD_CHARACTER.search(text)
+    bad = match.start() if match else None
+    if bad is not None:
+        ch = text[bad]
+        what = "byte-order mark" if ch == "\ufeff" else "control character"
+        offset = len(text[:bad].encode("utf-8", errors="surrogatepass"))
+        raise ModelError(f"{what} U+{ord(ch):04X} at {_place(data, offset)} is not allowed "
+                         "in a model file", source)
 
 
-def load_yaml_text(text: str, source: str = "<model>"):
-    """Parse YAML text strictly.
+def load_yaml_text(text: str | bytes, source: str = "<model>") -> Any:
+    """Parse YAML text strictly into plain Python data.
 
     Parameters
     ----------
-    text : str
-        The YAML document.
+    text : str or bytes
+        The YAML document (bytes must be UTF-8).
     source : str
         Name used in messages (usually the file name).
 
     Returns
     -------
     object
-        The plain Python data (dicts, lists, scalars).
+        Dicts, lists and scalars.
 
     Raises
     ------
     ModelError
-        Syntax error (with line), duplicate key, several documents, or a document that
-        expands past :data:`MAX_EXPANDED_NODES` nodes.
+        Bad characters, syntax error, duplicate key, several documents, unsupported tag,
+        too deep nesting, or aliases that expand past :data:`MAX_ALIAS_EXPANSION` nodes,
+        each with its line.
     """
-    loader = _StrictLoader(text)
+    if isinstance(text, str):
+        data = text.encode("utf-8", errors="surrogatepass")
+    else:
+        data = bytes(text)
+    _check_text(data, source)
+    loader = _Loader(data)
     try:
-        node = loader.get_single_node()
-        if node is None:
-            raise ModelError(f"{source} is empty: a model needs name, components and links")
-        if _expanded_size(node, {}) > MAX_EXPANDED_NODES:
-            raise ModelError(f"{source} expands to more than {MAX_EXPANDED_NODES} nodes "
-                             "through anchors and aliases; refusing it")
-        loader.node_paths = {}
-        _record_paths(node, "", loader.node_paths)
-        return loader.construct_document(node)
+        with gc_paused():
+            return _Builder(loader, source).document()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown place"
         problem = exc.problem or exc.context or "invalid YAML"
         raise ModelError(f"YAML syntax error at {where}: {problem}", source) from None
     except yaml.YAMLError as exc:
-        raise ModelError(f"invalid YAML: {exc}", source) from None
-    except RecursionError:
-        raise ModelError("document nests too deeply", source) from None
+        raise ModelError(f"invalid YAML: {' '.join(str(exc).split())}", source) from None
     finally:
         loader.dispose()
 
 
-def load_yaml_file(path: str | Path):
-    """Read and strictly parse a YAML file (see :func:`load_yaml_text`)."""
+class _Builder:
+    """Plain data from parser events, with an explicit stack (no recursion)."""
+
+    def __init__(self, loader: Any, source: str) -> None:
+        self.loader, self.source = loader, source
+        self.anchors: dict[str, tuple[Any, int]] = {}
+        self.open_anchors: set[str] = set()
+        self.expansion = 0
+        self.plain: dict[str, Any] = {}  # plain scalar text -> its value
+
+    def document(self) -> Any:
+        get = self.loader.get_event
+        get()  # StreamStart
+        start = get()
+        if isinstance(start, ev.StreamEndEvent):
+            raise ModelError(f"{self.source} is empty: a model needs name, components, links "
+                             "and ports")
+        root = self._node(get)
+        get()  # DocumentEnd
+        extra = get()
+        if not isinstance(extra, ev.StreamEndEvent):
+            raise ModelError(f"line {extra.start_mark.line + 1}: a model file holds one YAML "
+                             "document, found a second one", self.source)
+        return root
+
+    def _error(self, message: str, event: Any, path: str = "") -> ModelError:
+        return ModelError(f"{message} (line {event.start_mark.line + 1})",
+                          path or self.source)
+
+    def _node(self, get) -> Any:
+        # Frame: [container, path, anchor, size, pending key, key line, seen keys, is_map]
+        stack: list[list] = []
+        scalar, add = self._scalar, self._add
+        while True:
+            event = get()
+            kind = type(event)
+            if kind is ev.ScalarEvent:
+                value, size = scalar(event, stack), 1
+                if event.anchor is not None:
+                    self.anchors[event.anchor] = (value, 1)
+            elif kind is ev.MappingEndEvent or kind is ev.SequenceEndEvent:
+                frame = stack.pop()
+                value, size = frame[0], frame[3]
+                if frame[2] is not None:
+                    self.anchors[frame[2]] = (value, size)
+                    self.open_anchors.discard(frame[2])
+            elif kind is ev.MappingStartEvent or kind is ev.SequenceStartEvent:
+                if len(stack) >= MAX_DEPTH:
+                    raise self._error(f"the document nests more than {MAX_DEPTH} levels deep",
+                                      event)
+                is_map = kind is ev.MappingStartEvent
+                if event.tag is not None:
+                    self._check_tag(event, "map" if is_map else "seq", stack)
+                path = self._child_path(stack)
+                if event.anchor is not None:
+                    self.open_anchors.add(event.anchor)
+                stack.append([{} if is_map else [], path, event.anchor, 1, _NO_KEY, 0, {},
+                              is_map])
+                continue
+            elif kind is ev.AliasEvent:
+                value, size = self._alias(event)
+            else:  # pragma: no cover - the parser guarantees the order of events
+                raise self._error("unexpected YAML event", event)
+            if not stack:
+                return value
+            add(stack[-1], value, size, event)
+
+    def _child_path(self, stack: list[list]) -> str:
+        if not stack:
+            return ""
+        parent = stack[-1]
+        if parent[7]:
+            return parent[1] if parent[4] is _NO_KEY else join_path(parent[1], parent[4])
+        return f"{parent[1]}[{len(parent[0])}]"
+
+    def _add(self, frame: list, value: Any, size: int, event: Any) -> None:
+        frame[3] += size
+        if not frame[7]:
+            frame[0].append(value)
+            return
+        if frame[4] is _NO_KEY:
+            try:
+                hash(value)
+            except TypeError:
+                raise self._error("a mapping key must be a plain value", event,
+                                  frame[1]) from None
+            line = event.start_mark.line
+            if value in frame[6]:
+                raise ModelError(f"duplicate key {brief(value)} (line {line + 1}; first at line "
+                                 f"{frame[6][value] + 1})", join_path(frame[1], value))
+            frame[6][value] = line
+            frame[4] = value
+            return
+        key, frame[4] = frame[4], _NO_KEY
+        if key == "<<":
+            self._merge(frame, key, value, event)
+        else:
+            frame[0][key] = value
+
+    def _merge(self, frame: list, key: Any, value: Any, event: Any) -> None:
+        """YAML merge key ``<<: *base``: the base's keys, unless given here."""
+        bases = value if isinstance(value, list) else [value]
+        if not all(isinstance(b, dict) for b in bases):
+            raise self._error("'<<' must merge a mapping or a list of mappings", event,
+                              join_path(frame[1], key))
+        for base in bases:
+            for name, item in base.items():
+                if name not in frame[6]:
+                    frame[6][name] = event.start_mark.line
+                    frame[0][name] = item
+
+    def _alias(self, event: Any) -> tuple[Any, int]:
+        name = event.anchor
+        if name in self.open_anchors:
+            raise self._error(f"alias *{name} refers to a node that contains it", event)
+        if name not in self.anchors:
+            raise self._error(f"alias *{name} has no anchor &{name} before it", event)
+        value, size = self.anchors[name]
+        self.expansion += size
+        if self.expansion > MAX_ALIAS_EXPANSION:
+            raise ModelError(f"{self.source} expands to more than {MAX_ALIAS_EXPANSION} extra "
+                             "nodes through anchors and aliases; refusing it")
+        return value, size
+
+    def _check_tag(self, event: Any, kind: str, stack: list[list]) -> None:
+        if event.tag not in (None, "!", _TAG + kind):
+            raise self._error(f"unsupported YAML tag {event.tag}", event,
+                              self._child_path(stack))
+
+    def _scalar(self, event: Any, stack: list[list]) -> Any:
+        value, tag = event.value, event.tag
+        if tag is None or tag == "!":
+            if not event.implicit[0]:
+                return value  # quoted: a string
+            known = self.plain.get(value, _NO_KEY)  # plain scalars repeat: resolve once
+            if known is not _NO_KEY:
+                return known
+            if value.isdigit() and (value[0] != "0" or value == "0") and value.isascii() \
+                    and len(value) <= MAX_NUMBER_DIGITS:
+                result: Any = int(value)  # the common case, without the resolver's regexes
+            else:
+                tag = self.loader.resolve(yaml.ScalarNode, value, (True, False))
+                result = self._typed(tag, event, stack)
+            self.plain[value] = result
+            return result
+        return self._typed(tag, event, stack)
+
+    def _typed(self, tag: str, event: Any, stack: list[list]) -> Any:
+        """The value of a scalar with tag ``tag`` (plain data only)."""
+        value = event.value
+        if tag == _STR or tag == _TAG + "timestamp":
+            return value
+        if tag == _MERGE:
+            return "<<"
+        if tag in _SCALARS:
+            if len(value) > MAX_NUMBER_DIGITS:
+                raise self._error(f"a number written with {len(value)} characters is out of "
+                                  "range", event, self._child_path(stack))
+            node = yaml.ScalarNode(tag, value, event.start_mark, event.end_mark)
+            return _SCALARS[tag](self.loader, node)
+        raise self._error(f"unsupported YAML tag {tag}", event, self._child_path(stack))
+
+
+_NO_KEY = object()
+#: Characters a model file may not contain (C0/C1 controls but tab and line breaks,
+#: non-characters, lone surrogates, and a byte-order mark anywhere but at the start).
+_BAD_CHARACTER = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f"
+                            "\ufffe\uffff\ud800-\udfff]|(?!\\A)\ufeff")
+_SCALARS = {_TAG + name: yaml.SafeLoader.yaml_constructors[_TAG + name]
+            for name in ("null", "bool", "int", "float")}
+
+
+def read_model_bytes(path: str | Path) -> bytes:
+    """The bytes of a model file, refusing files over :func:`max_model_bytes`.
+
+    Regular files are checked by their size before reading; devices and pipes are read
+    only up to the limit (``powergraph check /dev/zero`` stops at once).
+    """
     path = Path(path)
+    limit = max_model_bytes()
     try:
-        text = path.read_text(encoding="utf-8")
+        with open(path, "rb") as handle:
+            info = os.fstat(handle.fileno())
+            if stat.S_ISDIR(info.st_mode):
+                raise IsADirectoryError
+            if stat.S_ISREG(info.st_mode) and info.st_size > limit:
+                raise ModelError(_too_large(path, info.st_size, limit))
+            data = handle.read(limit + 1)
     except FileNotFoundError:
         raise ModelError(f"no such file: {path}") from None
     except IsADirectoryError:
         raise ModelError(f"{path} is a directory, not a model file") from None
-    except UnicodeDecodeError as exc:
-        raise ModelError(f"{path} is not UTF-8 text ({exc.reason})") from None
     except OSError as exc:
-        raise ModelError(f"cannot read {path}: {exc.strerror}") from None
-    return load_yaml_text(text, source=str(path))
+        raise ModelError(f"cannot read {path}: {exc.strerror or exc}") from None
+    if len(data) > limit:
+        raise ModelError(_too_large(path, None, limit))
+    return data
+
+
+def _too_large(path: Path, size: int | None, limit: int) -> str:
+    what = f"{size} bytes" if size is not None else "more than that"
+    return (f"{path} is too large for a model file ({what}; the limit is {limit} bytes: "
+            f"raise it with --max-model-size or {ENV_MAX_MODEL_BYTES})")
+
+
+def load_yaml_file(path: str | Path) -> Any:
+    """Read and strictly parse a YAML file (see :func:`load_yaml_text`)."""
+    return load_yaml_text(read_model_bytes(path), source=str(path))

@@ -1,4 +1,4 @@
-"""Schema of a mesh's ``backlash:`` block and ``backlash_arcmin:`` (seeds/002)."""
+"""A mesh's ``backlash:`` block and ``backlash_arcmin:`` (Li et al. 2012): format and checks."""
 from __future__ import annotations
 
 import copy

@@ -1,4 +1,4 @@
-"""Schema of a mesh's ``cycloid: {module, profile_error, shift, rc}`` block (seeds/003)."""
+"""A mesh's ``cycloid: {module, profile_error, shift, rc}`` block (Csobán 2021)."""
 from __future__ import annotations
 
 import dataclasses

@@ -1,4 +1,4 @@
-"""Schema of ``components.ID.geometry`` (seeds/004 volume): shapes, keys, units, checks."""
+"""``components.ID.geometry`` (volume, Pan & Wang 2019): shapes, keys, units, checks."""
 from __future__ import annotations
 
 import dataclasses

@@ -102,12 +102,13 @@ def test_models_without_friction_are_unchanged() -> None:
 
 
 @pytest.mark.parametrize("friction, geometry, path, fragment", [
-    ({"mu": 0.05}, None, "links[0].geometry", "missing module"),
-    ({"mu": 1.5}, {"module": 2}, "links[0].friction.mu", "< 1"),
-    ({"mu": 0.05, "viscosity": 30}, {"module": 2}, "links[0].friction.viscosity", "only mu"),
+    ({"mu": 0.05}, None, "links[0].geometry", "must be a mapping"),
+    ({"mu": 0.05}, {"face_width": 3}, "links[0].geometry", "module"),
+    ({"mu": 1.5}, {"module": 2}, "links[0].friction.mu", r"in \[0, 1\)"),
+    ({"mu": 0.05, "viscosity": 30}, {"module": 2}, "links[0].friction.viscosity", "unknown field"),
     ({"model": "iso14179", "viscosity": 30, "roughness": 0.5}, {"module": 2},
      "links[0].geometry", "face_width"),
-    ({"model": "magic"}, {"module": 2}, "links[0].friction.model", "unknown friction model"),
+    ({"model": "magic"}, {"module": 2}, "links[0].friction.model", "unknown model 'magic'"),
     ({"mu": 0.05}, {"module": 2, "colour": "red"}, "links[0].geometry.colour", "unknown field"),
     ({"mu": 0.05}, {"module": 2, "addendum": 0.2}, "links[0].geometry", "contact ratio"),
     ({"model": "iso14179", "viscosity": "3 m", "roughness": 0.5}, {"module": 2, "face_width": 9},
