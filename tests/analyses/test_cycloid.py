@@ -208,7 +208,8 @@ def test_iso_table_follows_the_standard_formula() -> None:
         lower = upper
 
 
-@pytest.fixture(scope="module", params=[1, 2, 3, 5])
+@pytest.fixture(scope="module", params=[1, 2, pytest.param(3, marks=pytest.mark.slow),
+                                        pytest.param(5, marks=pytest.mark.slow)])
 def study(request):
     return fluctuation_study(request.param)
 

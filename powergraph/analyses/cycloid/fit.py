@@ -9,6 +9,7 @@ by least squares with the paper's surface ``Δi = a·d + b·d·z1^−1.5`` (Δi 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy.linalg import lstsq
@@ -131,6 +132,15 @@ def fluctuation_study(module: float, teeth=PAPER_TEETH, grades=GRADES, shift: fl
     >>> study.teeth.tolist(), study.profile_error.tolist(), study.paper_a
     ([9, 9, 25, 25], [0.003, 0.018, 0.0045, 0.026], 6.842)
     """
+    return _study(float(module), tuple(int(z) for z in teeth), tuple(int(g) for g in grades),
+                  float(shift), float(rc))
+
+
+@lru_cache(maxsize=16)
+def _study(module: float, teeth: tuple[int, ...], grades: tuple[int, ...], shift: float,
+           rc: float) -> FluctuationStudy:
+    """The study itself, computed once per set of arguments (its arrays are read-only, so
+    the cached result can be shared)."""
     kept = [int(z) for z in teeth if module * z <= LARGEST_SIZE]
     left_out = tuple(int(z) for z in teeth if module * z > LARGEST_SIZE)
     if len(kept) < 2:
@@ -142,10 +152,15 @@ def fluctuation_study(module: float, teeth=PAPER_TEETH, grades=GRADES, shift: fl
             d = profile_error_for_grade(module, z1, grade)
             r = cycloid_fluctuation(module, z1, d, shift, rc, points_per_segment=_STUDY_POINTS)
             rows.append((z1, grade, d, r.max_deviation_percent, r.max_deviation_percent_2deg))
-    z, g, d, exact, paper_way = (np.array(col) for col in zip(*rows))
+    z, g, d, exact, paper_way = (_frozen(np.array(col)) for col in zip(*rows))
     (a, b), *_ = lstsq(np.column_stack([d, d * z ** -1.5]), exact)
     paper = PAPER_FITS.get(int(module)) if float(module).is_integer() else None
-    return FluctuationStudy(float(module), float(shift), float(rc), z.astype(int),
-                            g.astype(int), d, exact, paper_way, float(a), float(b),
+    return FluctuationStudy(float(module), float(shift), float(rc), _frozen(z.astype(int)),
+                            _frozen(g.astype(int)), d, exact, paper_way, float(a), float(b),
                             None if paper is None else paper[0],
                             None if paper is None else paper[1], left_out)
+
+
+def _frozen(values: np.ndarray) -> np.ndarray:
+    values.flags.writeable = False
+    return values
