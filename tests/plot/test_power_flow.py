@@ -155,11 +155,14 @@ def _check_no_overlap(ax) -> None:
         assert not any(box.overlaps(s) for s in symbols), label.get_text()
 
 
+@pytest.mark.parametrize("every_frame", [False, pytest.param(True, marks=pytest.mark.slow)],
+                         ids=["ground", "every-carrier"])
 @pytest.mark.parametrize("path", MODEL_FILES, ids=lambda p: p.stem)
-def test_every_model_in_every_carriers_frame(path, solve_ok) -> None:
+def test_every_model_in_every_carriers_frame(path, every_frame, solve_ok) -> None:
+    """Every library model drawn as seen from the ground (quick) and from each carrier."""
     model = pg.load_model(str(path))
     result = solve_ok(model)
-    for frame in [None, *carriers(model)]:
+    for frame in [None, *carriers(model)] if every_frame else [None]:
         ax = plot_power_flow(result, frame)
         check_drawing(result, frame, ax)
         plt.close(ax.figure)
