@@ -1,4 +1,8 @@
-"""REFERENCE §B and §C (and hand-derived trains), driven by tests/data/reference_trains.yaml.
+"""Reference trains against closed forms and hand derivations, driven by
+tests/data/reference_trains.yaml: the 2K-H and K-H-V closed forms of docs/theory.md, the
+virtual-power RV-40E of Wang (2021)'s Table 1 worked by hand (values in
+tests/data/published_values.yaml), and hand-derived Wolfrom, Ravigneaux, Simpson and Tuplin
+trains.
 
 Every solve is followed by the conservation checks of powergraph.testing.
 """
@@ -17,9 +21,20 @@ from powergraph.testing import assert_conservation
 TESTS = Path(__file__).resolve().parents[1]
 MODELS = TESTS.parent / "models"
 CASES = yaml.safe_load((TESTS / "data" / "reference_trains.yaml").read_text())
+PUBLISHED = yaml.safe_load((TESTS / "data" / "published_values.yaml").read_text())
+
+
+def _published(keys: str) -> float:
+    """A value of published_values.yaml named by its keys joined with "/"."""
+    node = PUBLISHED
+    for key in keys.split("/"):
+        node = node[key]
+    return float(node)
 
 
 def _expected(spec: dict, variables: dict) -> float:
+    if "published" in spec:
+        return _published(spec["published"])
     value = spec["value"]
     if isinstance(value, str):
         return float(eval(value, {"__builtins__": {}, **vars(math)}, variables))  # noqa: S307
