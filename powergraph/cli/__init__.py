@@ -1,1 +1,1 @@
-"""Command line (SPEC §2). Each command lives in its own ``cmd_*.py`` module."""
+"""Command line (README "Commands", docs/architecture.md). Each command lives in its own ``cmd_*.py`` module."""

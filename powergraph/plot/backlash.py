@@ -1,4 +1,4 @@
-"""Plots for the backlash analysis (seeds/002). Each takes ``ax=None``, returns the axes,
+"""Plots for the backlash analysis (Li et al. 2012, docs/backlash.md). Each takes ``ax=None``, returns the axes,
 and computes nothing: give it results of :mod:`powergraph.analyses.backlash`.
 
 Examples

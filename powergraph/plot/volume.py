@@ -1,4 +1,4 @@
-"""Plots of the volume analysis (seeds/004). Every function takes ``ax=None``, returns the
+"""Plots of the volume analysis (Pan & Wang 2019, docs/volume.md). Every function takes ``ax=None``, returns the
 axes, and computes nothing: the numbers come from :mod:`powergraph.analyses.volume`.
 
 Examples

@@ -1,4 +1,4 @@
-"""Statics and power flow: torques, directions, losses, flow graph (DESIGN §3)."""
+"""Statics and power flow: torques, directions, losses, flow graph (docs/theory.md)."""
 from __future__ import annotations
 
 from powergraph.statics.flow import Flow, circulating_power, flow_edges, flow_graph, split_powers

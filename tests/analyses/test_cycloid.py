@@ -1,14 +1,19 @@
-"""Cycloid transmission fluctuation (seeds/003, Csobán 2021; REFERENCE §E).
+"""Cycloid transmission fluctuation: Csobán A. (2021), "Impacts of a Profile Failure of the
+Cycloidal Drive of a Planetary Gear on Transmission Gear", Lubricants 9(7): 71.
 
-Expected values come from the paper (its fitted surfaces, Tables 1–3), REFERENCE §E, or
-closed forms derived in the tests; never from this code's own output.
+Expected values come from the paper (its fitted surfaces of Section 5 and its Tables 1 and
+3, written in tests/data/published_values.yaml, section ``csoban2021``), the laws of the
+geometry described in docs/cycloid.md, or closed forms derived in the tests; never from
+this code's own output.
 """
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 from scipy.optimize import brentq
 
 from powergraph.analyses.cycloid import (PAPER_FITS, central_difference_ratio,
@@ -19,7 +24,10 @@ from powergraph.analyses.cycloid.contact import contact_curve
 from powergraph.analyses.cycloid.tolerance import GRADE_FACTORS, ISO_286_TABLE
 from powergraph.errors import UsageError
 
-# ---------------------------------------------------------------- laws of REFERENCE §E
+CSOBAN = yaml.safe_load((Path(__file__).resolve().parents[1] / "data" /
+                         "published_values.yaml").read_text())["csoban2021"]
+
+# ---------------------------------------------------------------- laws of the geometry
 
 
 @pytest.mark.parametrize("teeth", [9, 25, 117])
@@ -67,8 +75,8 @@ def test_fluctuation_repeats_z2_times_per_input_revolution(teeth: int) -> None:
 
 
 def test_large_teeth_limit() -> None:
-    # REFERENCE §E: for large z1, max Δi → 100π·d/(e·z2) (rack-like contact near the
-    # pin whose normal is perpendicular to the line of centres).
+    # For large z1, max Δi → 100π·d/(e·z2) (rack-like contact near the pin whose normal is
+    # perpendicular to the line of centres; docs/cycloid.md).
     module, teeth, error = 1, 1001, 0.001
     r = cycloid_fluctuation(module, teeth, error, points_per_segment=4)
     limit = 100 * math.pi * error / ((1 - 0.3) * module / 2 * (teeth + 1))
@@ -156,7 +164,7 @@ def test_exact_maximum_is_at_a_handover_and_beats_the_2deg_grid() -> None:
                                                     rel=1e-12)
     assert r.max_deviation_percent >= np.max(np.abs(r.deviation_percent))
     assert r.max_deviation_percent > r.max_deviation_percent_2deg
-    # REFERENCE §E: the 2° grid misses the maximum badly for large z1
+    # The paper's 2° grid (its Eq. 10) misses the maximum badly for large z1
     wide = cycloid_fluctuation(1, 117, profile_error_for_grade(1, 117, 5))
     assert wide.max_deviation_percent_2deg < 0.5 * wide.max_deviation_percent
 
@@ -164,7 +172,7 @@ def test_exact_maximum_is_at_a_handover_and_beats_the_2deg_grid() -> None:
 @pytest.mark.parametrize("teeth", [3, 9, 117])
 @pytest.mark.parametrize("shift", [0.05, 0.3, 0.9])
 def test_deviation_is_monotonic_between_handovers(teeth: int, shift: float) -> None:
-    # Why the maximum is a one-sided value at a hand-over (REFERENCE §E).
+    # Why the maximum is a one-sided value at a hand-over (docs/cycloid.md).
     r = cycloid_fluctuation(1, teeth, 0.005, shift=shift, rc=0.3, points_per_segment=12)
     for _, _, ratio in r.contact_segments():
         steps = np.diff(ratio)
@@ -184,13 +192,8 @@ def test_candidate_pins_do_not_change_the_contact() -> None:
 
 def test_table1_profile_errors_m3() -> None:
     # Paper Table 1 (m = 3), rows IT5…IT9, columns z1 = 9, 25, 43, 53, 117.
-    table1 = {5: [0.0045, 0.0065, 0.009, 0.009, 0.0125],
-              6: [0.0065, 0.0095, 0.0125, 0.0125, 0.018],
-              7: [0.0105, 0.015, 0.02, 0.02, 0.0285],
-              8: [0.0165, 0.023, 0.0315, 0.0315, 0.0445],
-              9: [0.026, 0.037, 0.05, 0.05, 0.07]}
-    for grade, row in table1.items():
-        for z1, d in zip((9, 25, 43, 53, 117), row):
+    for grade, row in CSOBAN["table1_m3"].items():
+        for z1, d in zip(CSOBAN["teeth"], row):
             assert profile_error_for_grade(3, z1, grade) == pytest.approx(d, abs=1e-12)
 
 
@@ -215,9 +218,11 @@ def study(request):
 
 
 def test_refit_matches_the_paper_within_3_percent(study) -> None:
-    # Paper Eqs. for m = 1, 2, 3, 5 (REFERENCE §E). Measured: m = 1, 2 to the printed digits;
-    # m = 3: a +0.7 %, m = 5: a +1.9 % (b within 0.2 %).
-    a, b = PAPER_FITS[int(study.module)]
+    # The paper's fitted surfaces for m = 1, 2, 3, 5 (Section 5). Measured: m = 1, 2 to the
+    # printed digits; m = 3: a +0.7 %, m = 5: a +1.9 % (b within 0.2 %).
+    fit = CSOBAN["fits"][int(study.module)]
+    a, b = fit["a"], fit["b"]
+    assert PAPER_FITS[int(study.module)] == (a, b)
     assert study.a == pytest.approx(a, rel=0.03)
     assert study.b == pytest.approx(b, rel=0.03)
     assert (study.paper_a, study.paper_b) == (a, b)

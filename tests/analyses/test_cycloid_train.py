@@ -1,9 +1,11 @@
-"""A cycloid stage's fluctuation carried to a train's output (issue 7, item 4).
+"""A cycloid stage's fluctuation carried to a train's output (a mesh with a ``cycloid:``
+block, docs/cycloid.md).
 
 Hand derivations (input speed held constant, the stage's instantaneous ratio i_s(θ)):
 
-- RV-40E (seeds/001: z1 = 12, z2 = 36, z4 = 39, z5 = 40; pin ring 5 fixed, crank 2/3 the
-  carrier of the cycloid mesh, output 6/7 the carrier of the first stage, 4 coupled to 6).
+- RV-40E (Wang 2021, Table 1: z1 = 12, z2 = 36, z4 = 39, z5 = 40; pin ring 5 fixed, crank
+  2/3 the carrier of the cycloid mesh, output 6/7 the carrier of the first stage, 4 coupled
+  to 6).
   Disc: w4 = ρ·w3 with ρ = −1/i_s. First stage: w1 − w7 = −(36/12)(w3 − w7), w7 = w4.
   So w1 = w3·(4ρ − 3) and w6/w1 = ρ/(4ρ − 3), i.e. i_train = 4 + 3·i_s (121 for i_s = 39):
   a stage deviation Δi (%) is (3·39/121)·Δi at the output, and the crank turns

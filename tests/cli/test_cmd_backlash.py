@@ -1,21 +1,34 @@
-"""``powergraph backlash MODEL [--json] [--output ID] [--plot FILE]``."""
+"""``powergraph backlash MODEL [--json] [--output ID] [--plot FILE]``.
+
+Reference values: Li et al. (2012), "Backlash control and compensation for internal meshing
+involute spur gears", pairs 1 and 2, as printed and recomputed by hand from its equations
+(tests/data/published_values.yaml, section ``li2012``).
+"""
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
 import pytest
+import yaml
 
 from powergraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
 LI2012 = str(ROOT / "models" / "backlash_li2012.yaml")
+LI = yaml.safe_load((ROOT / "tests" / "data" / "published_values.yaml").read_text())["li2012"]
 NO_BACKLASH = """
 name: plain pair
 components: {0: {role: frame}, 1: {teeth: 20}, 2: {teeth: 60}}
 links: [{type: mesh, between: [1, 2]}]
 ports: [{component: 1, role: input}, {component: 2, role: output}]
 """
+
+
+def arcmin(text: str) -> float:
+    """``6'57.1"`` -> arc minutes."""
+    minutes, seconds = text.rstrip('"').split("'")
+    return int(minutes) + float(seconds) / 60
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
@@ -31,15 +44,15 @@ def test_json_keys_and_reference_values(capsys) -> None:
     assert set(data["output_lost_motion_arcmin"]) == {"worst_case", "rss"}
     first, second = data["meshes"]
     assert first["between"] == ["R1", "G1"]
-    # REFERENCE §D: a'' printed 2.572 / 2.565 (paper variant, within 0.01 mm),
-    # ≈ 2.522 / 2.514 with tan α; after compensation 2'3.5" and 2'23.5".
-    assert first["eccentric_offset"]["paper"] == pytest.approx(2.572, abs=0.01)
-    assert second["eccentric_offset"]["paper"] == pytest.approx(2.565, abs=0.01)
-    assert first["eccentric_offset"]["standard"] == pytest.approx(2.522, abs=0.001)
-    assert second["eccentric_offset"]["standard"] == pytest.approx(2.514, abs=0.001)
-    assert first["lost_motion_arcmin"]["after"] == pytest.approx(2 + 3.5 / 60, abs=0.001)
-    assert second["lost_motion_arcmin"]["after"] == pytest.approx(2 + 23.5 / 60, abs=0.001)
-    assert first["equivalent_shift"]["R1"] == pytest.approx(0.0192, abs=0.00005)
+    # a'' printed 2.572 / 2.565 (Eq. 15 as printed, within 0.01 mm), 2.522 / 2.514 with
+    # tan α (within 0.001 mm); after compensation 2'3.5" and 2'23.5" (recomputed).
+    for mesh, printed, standard, after, shift in zip(
+            (first, second), LI["eccentric_offset_printed"], LI["eccentric_offset_standard"],
+            LI["lost_motion_recomputed"]["after"], LI["equivalent_shift_recomputed"]):
+        assert mesh["eccentric_offset"]["paper"] == pytest.approx(printed, abs=0.01)
+        assert mesh["eccentric_offset"]["standard"] == pytest.approx(standard, abs=0.001)
+        assert mesh["lost_motion_arcmin"]["after"] == pytest.approx(arcmin(after), abs=0.001)
+        assert list(mesh["equivalent_shift"].values()) == pytest.approx(shift, abs=0.00005)
     assert set(first["lost_motion_arcmin"]) == {"thickness", "runout", "bearing", "before",
                                                 "after"}
 
@@ -47,8 +60,9 @@ def test_json_keys_and_reference_values(capsys) -> None:
 def test_human_report(capsys) -> None:
     status, out, _ = run(capsys, LI2012)
     assert status == 0
-    # REFERENCE §D values as the paper prints angles: before 6'57.1", after 2'3.5".
-    for text in ("6'57.1\"", "2'3.5\"", "6'37.1\"", "2'23.5\"", "worst case", "RSS",
+    # The recomputed lost motions, written as the paper writes angles: 6'57.1", 2'3.5"...
+    recomputed = LI["lost_motion_recomputed"]
+    for text in (*recomputed["before"], *recomputed["after"], "worst case", "RSS",
                  "eccentric offset a''"):
         assert text in out
 

@@ -1,4 +1,6 @@
-"""``powergraph solve MODEL --method wang2021`` (SPEC §2–3, REFERENCE §A)."""
+"""``powergraph solve MODEL --method wang2021``: the keys of docs/format.md plus the method's
+own, and Wang (2021)'s RV-40E ("A calculation method of transmission efficiency for RV
+reducer", Table 1, Eqs. 16–20; values in tests/data/published_values.yaml)."""
 from __future__ import annotations
 
 import json
@@ -15,8 +17,9 @@ ROOT = Path(__file__).resolve().parents[2]
 RV40E = str(ROOT / "models" / "rv40e.yaml")
 RENAMED = str(ROOT / "tests" / "data" / "rv_renamed_shuffled.yaml")
 SMALL = ROOT / "tests" / "data" / "rv_small.yaml"
+PUBLISHED = yaml.safe_load((ROOT / "tests" / "data" / "published_values.yaml").read_text())
 
-SPEC_KEYS = {"name", "method", "dof", "ratio", "efficiency", "input_power", "output_power",
+FORMAT_KEYS = {"name", "method", "dof", "ratio", "efficiency", "input_power", "output_power",
              "total_loss", "speeds", "torques", "meshes", "flows", "circulating_power",
              "self_locking", "split_power", "virtual_power", "losses", "beta", "alpha"}
 
@@ -31,9 +34,9 @@ def test_json_reproduces_the_paper(capsys) -> None:
     status, out, err = run(capsys, RV40E, "--method", "wang2021", "--json")
     assert status == 0, err
     data = json.loads(out)
-    assert SPEC_KEYS <= set(data)
+    assert FORMAT_KEYS <= set(data)
     assert data["method"] == "wang2021"
-    # REFERENCE §A, exact column (V = 38/39 P, U = P/39, Eqs. 18-20).
+    # The paper's equations exactly (V = 38/39 P, U = P/39, Eqs. 16-20).
     P = 2270.0
     assert data["split_power"] == pytest.approx(38 / 39 * P, abs=1e-6)
     assert data["virtual_power"] == pytest.approx(P / 39, abs=1e-6)
@@ -41,10 +44,17 @@ def test_json_reproduces_the_paper(capsys) -> None:
     l2 = (P + P / 39 - l1) * 0.06
     assert data["losses"] == pytest.approx([l1, l2], abs=1e-6)
     assert data["efficiency"] == pytest.approx((P - l1 - l2) / P, abs=1e-9)
+    exact, printed = PUBLISHED["wang2021"]["exact"], PUBLISHED["wang2021"]["printed"]
+    assert data["split_power"] == pytest.approx(exact["split_power"], abs=5e-5)
+    assert data["virtual_power"] == pytest.approx(exact["virtual_power"], abs=5e-6)
+    assert data["losses"] == pytest.approx([exact["loss_1"], exact["loss_2"]], abs=5e-6)
+    assert data["efficiency"] == pytest.approx(exact["efficiency"], abs=5e-8)
+    assert 100 * data["efficiency"] == pytest.approx(printed["efficiency_percent"], abs=0.05)
     assert data["beta"] == pytest.approx(39) and data["alpha"] == pytest.approx(40)
     assert data["ratio"] == pytest.approx(121)
     assert [m["between"] for m in data["meshes"]] == [[1, 2], [4, 5]]
-    assert data["virtual_power_efficiency"] == pytest.approx(0.287376, abs=5e-7)
+    assert data["virtual_power_efficiency"] == pytest.approx(
+        PUBLISHED["rv40e_virtual_power"]["both_094"]["efficiency"], abs=5e-7)
 
 
 def test_readable_report_shows_both_efficiencies(capsys) -> None:
@@ -71,7 +81,7 @@ def test_mesh_efficiency_override(capsys) -> None:
     status, out, _ = run(capsys, RV40E, "--method", "wang2021", "--json",
                          "--mesh-efficiency", "0.98")
     assert status == 0
-    # REFERENCE §A closed form: eta = eta1 - (eta1 + 1/beta)(1 - eta2), beta = 39.
+    # The paper's Eqs. (8)-(15): eta = eta1 - (eta1 + 1/beta)(1 - eta2), beta = 39.
     assert json.loads(out)["efficiency"] == pytest.approx(0.98 - (0.98 + 1 / 39) * 0.02,
                                                           rel=1e-12)
 

@@ -1,4 +1,6 @@
-"""``powergraph volume MODEL [--json] [--plot FILE]`` (seeds/004)."""
+"""``powergraph volume MODEL [--json] [--plot FILE]``: Pan & Wang (2019), "Volume calculation
+of RV reducer" (docs/volume.md). The paper prints no inputs for its volumes, so the
+expected values are hand computations of the geometry in models/rv40e.yaml."""
 from __future__ import annotations
 
 import json

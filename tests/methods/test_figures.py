@@ -1,8 +1,11 @@
-"""Data and drawings of Wang (2021)'s Figs. 12–13 by both methods (REFERENCE §A–B).
+"""Data and drawings of Wang (2021)'s Figs. 12–13 by both methods.
 
-Expected values: REFERENCE.md, the paper's closed form η = η1 − (η1 + 1/β)(1 − η2) with
-β = z4/(z5 − z4), and the hand-derived virtual-power closed form of the RV
-(tests/methods/test_wang2021.py::_vp_closed_form, repeated here).
+Wang C. (2021), "A calculation method of transmission efficiency for RV reducer". Expected
+values: the paper's closed form η = η1 − (η1 + 1/β)(1 − η2) with β = z4/(z5 − z4) (from its
+Eqs. 8–15), the hand-derived virtual-power closed form of the RV
+(tests/methods/test_wang2021.py::_vp_closed_form, repeated here), and the values of both
+written in tests/data/published_values.yaml (sections ``wang2021`` and
+``rv40e_virtual_power``).
 """
 from __future__ import annotations
 
@@ -11,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 import powergraph as pg
 from powergraph.methods.figures import (
@@ -24,10 +28,12 @@ from powergraph.methods.figures import (
 
 ROOT = Path(__file__).resolve().parents[2]
 RV40E = ROOT / "models" / "rv40e.yaml"
+PUBLISHED = yaml.safe_load((ROOT / "tests" / "data" / "published_values.yaml").read_text())
+VIRTUAL_POWER = PUBLISHED["rv40e_virtual_power"]
 
 
 def paper_eta(eta1: float, eta2: float, z4: int, z5: int) -> float:
-    """REFERENCE §A: eta = eta1 - (eta1 + 1/beta)(1 - eta2), beta = z4/(z5 - z4)."""
+    """Wang (2021), Eqs. (8)-(15): eta = eta1 - (eta1 + 1/beta)(1 - eta2), beta = z4/(z5 - z4)."""
     beta = z4 / (z5 - z4)
     return eta1 - (eta1 + 1 / beta) * (1 - eta2)
 
@@ -72,8 +78,8 @@ def test_fig12_virtual_power_curves(fig12) -> None:
     assert both == pytest.approx([vp_eta(12, 36, 39, 40, e, e) for e in x], rel=1e-9)
     assert needle == pytest.approx([vp_eta(12, 36, 39, 40, e, 0.998) for e in x], rel=1e-9)
     at = int(np.argmin(abs(x - 0.94)))
-    assert both[at] == pytest.approx(0.287376, abs=5e-7)      # REFERENCE §B
-    assert needle[at] == pytest.approx(0.873043, abs=5e-7)    # REFERENCE §B
+    assert both[at] == pytest.approx(VIRTUAL_POWER["both_094"]["efficiency"], abs=5e-7)
+    assert needle[at] == pytest.approx(VIRTUAL_POWER["needle_0998"]["efficiency"], abs=5e-7)
     assert both[-1] == pytest.approx(1.0, abs=1e-12)          # ideal meshes
     assert {m.curve for m in fig12.marks} == {"wang2021", "virtual-power",
                                                "virtual-power-needle"}
@@ -85,11 +91,10 @@ def test_fig13_cycloid_teeth(fig13_cycloid) -> None:
     assert paper.x == pytest.approx(1 + 36 * z5 / 12, rel=1e-12)     # i = 1 + z2 z5/z1
     assert paper.y == pytest.approx([paper_eta(0.94, 0.94, z - 1, z) for z in z5],
                                     rel=1e-12)
-    # REFERENCE §A: 0.88153 at z4 = 29, 0.88206 at 39, 0.88238 at 49.
+    # The paper's equations at z4 = 29, 39, 49: 0.88153, 0.88206, 0.88238 (published_values).
     marks = {m.text.split(":")[0]: m.y for m in fig13_cycloid.marks}
-    assert marks["z4 = 29"] == pytest.approx(0.88153, abs=5e-6)
-    assert marks["z4 = 39"] == pytest.approx(0.88206, abs=5e-6)
-    assert marks["z4 = 49"] == pytest.approx(0.88238, abs=5e-6)
+    for z4, value in PUBLISHED["wang2021"]["fig13_trend"].items():
+        assert marks[f"z4 = {z4}"] == pytest.approx(value, abs=5e-6)
     # The equations' η rises with the ratio; the virtual-power η falls.
     assert np.all(np.diff(paper.y) > 0)
     assert np.all(np.diff(fig13_cycloid.curve("virtual-power").y) < 0)

@@ -1,4 +1,5 @@
-"""Backlash and lost motion of internal involute pairs (Li et al. 2012, seeds/002), per
+"""Backlash and lost motion of internal involute pairs (Li et al. 2012, "Backlash
+control and compensation for internal meshing involute spur gears"), per
 mesh and carried to the output of a whole train.
 
 Per mesh (a ``backlash:`` block on a mesh link, see :mod:`powergraph.model.block_backlash`):

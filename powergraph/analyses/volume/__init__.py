@@ -1,4 +1,5 @@
-"""Volume of RV-reducer parts and whole trains, Pan & Wang (2019), seeds/004.
+"""Volume of RV-reducer parts and whole trains, Pan & Wang (2019),
+"Volume calculation of RV reducer".
 
 * :func:`volume` / :func:`model_volume` — every component with a ``geometry`` block, by the
   paper's Eqs. (1)–(7), times ``count``, and the total, Eq. (8).

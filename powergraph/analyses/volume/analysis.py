@@ -1,4 +1,5 @@
-"""Volume of a model: each component's ``geometry`` block → the paper's formula (seeds/004).
+"""Volume of a model: each component's ``geometry`` block → Pan & Wang (2019)'s
+formulas.
 
 Functions over the model; the model is never changed.
 """
