@@ -10,7 +10,7 @@ Writes, for the model (default the RV-40E):
 - ``fig12_equivalent_cycloid_efficiency``: the cycloid–pin efficiency at which the
   virtual-power method gives the paper's η;
 - ``fig13_ratio_cycloid_teeth``: η against the ratio, z5 varied with z4 = z5 − 1, with a
-  zoom on the paper's curve (it rises: tests/data/reference_values.md);
+  zoom on the paper's curve (it rises: tests/data/published_values.yaml);
 - ``fig13_ratio_first_stage``: η against the ratio, z2/z1 varied.
 
 Each figure carries its caption; the captions are also printed.

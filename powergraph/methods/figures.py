@@ -15,7 +15,7 @@ over the same grid.
 By the paper's equations ``η = η1 − (η1 + 1/β)(1 − η2)`` with ``β = z4/(z5 − z4)``: η
 *rises* slightly with z4 (0.88153 at z4 = 29, 0.88206 at 39, 0.88238 at 49) and does not
 depend on z2/z1, while the paper's text says η falls as the ratio grows. The
-virtual-power η does fall. We plot what the equations give (tests/data/reference_values.md).
+virtual-power η does fall. We plot what the equations give (tests/data/published_values.yaml).
 
 Examples
 --------
@@ -280,7 +280,7 @@ def cycloid_ratio_curves(model: Model, z5_values: Iterable[int] | None = None,
     needle : float
         Cycloid–pin mesh efficiency of the third curve.
     reference_z4 : iterable of int
-        Cycloid teeth whose paper value is marked (tests/data/reference_values.md).
+        Cycloid teeth whose paper value is marked (tests/data/published_values.yaml).
 
     Returns
     -------

@@ -43,7 +43,7 @@ def plot_figure(data: FigureData, ax: Any = None, marks: bool = True,
         From :mod:`powergraph.methods.figures`.
     ax : matplotlib Axes, optional
     marks : bool
-        Annotate ``data.marks`` (e.g. REFERENCE values).
+        Annotate ``data.marks`` (e.g. published values).
     title : bool
         Use ``data.title`` as the axes title.
 

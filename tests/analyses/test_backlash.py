@@ -1,7 +1,7 @@
-"""Backlash of internal involute pairs (Li et al. 2012; tests/data/reference_values.md) and
+"""Backlash of internal involute pairs (Li et al. 2012; tests/data/published_values.yaml) and
 the lost motion of whole trains (hand derivations).
 
-Expected values come from tests/data/reference_values.md (Li et al. 2012), the paper's
+Expected values come from tests/data/published_values.yaml (Li et al. 2012), the paper's
 printed Tables 2-3 and
 Conclusions, closed forms, or hand derivations written here -- never from the code.
 """
@@ -79,7 +79,7 @@ def test_equivalent_shift_reproduces_the_measured_m(pairs, pair, gear, z, intern
 @pytest.mark.parametrize("pair,internal,external", [(1, 0.0192, -0.0179), (2, 0.0179, -0.0134)])
 def test_equivalent_shift_matches_reference_recomputation(pairs, pair, internal,
                                                           external) -> None:
-    # reference_values.md (Li 2012): "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
+    # published_values.yaml (Li 2012): "recomputation gives 0.0192 / -0.0179 and 0.0179 / -0.0134"
     # (printed in Table 3: 0.019 / -0.016 and 0.017 / -0.014).
     shift = pairs[pair].equivalent_shift
     assert shift[pairs[pair].internal] == pytest.approx(internal, abs=0.00005)
@@ -103,7 +103,7 @@ def test_eccentric_offset_paper_variant_is_table_3(pairs, pair, printed) -> None
 
 @pytest.mark.parametrize("pair,reference", [(1, 2.522), (2, 2.514)])
 def test_eccentric_offset_standard_variant_is_reference(pairs, pair, reference) -> None:
-    # tests/data/reference_values.md (Li 2012): with tan α in Eq. 15, a'' ≈ 2.522 / 2.514 mm.
+    # tests/data/published_values.yaml (Li 2012): with tan α in Eq. 15, a'' ≈ 2.522 / 2.514 mm.
     assert pairs[pair].eccentric_offset["standard"] == pytest.approx(reference, abs=0.001)
 
 
@@ -152,7 +152,7 @@ def test_standard_variant_is_the_tooth_thickness_condition(pairs, pair) -> None:
 
 
 def test_paper_variant_with_printed_shifts_is_reference() -> None:
-    # reference_values.md (Li 2012): "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15
+    # published_values.yaml (Li 2012): "without it (as printed) ≈ 2.573 / 2.561 mm": Eq. 15
     # without tan α fed
     # with the printed shifts 0.019/-0.016 and 0.017/-0.014.
     from powergraph.analyses.backlash import no_backlash_centre_distance, working_pressure_angle
@@ -178,7 +178,7 @@ def test_eq1_constant() -> None:
     (1, arcmin(6, 20.4), arcmin(6, 57.1), arcmin(2, 3.5)),
     (2, arcmin(6, 3.7), arcmin(6, 37.1), arcmin(2, 23.5))])
 def test_lost_motion_terms_are_reference(pairs, pair, thickness_runout, before, after) -> None:
-    # tests/data/reference_values.md (Li et al. 2012), to its printed 0.1".
+    # tests/data/published_values.yaml (Li et al. 2012), to its printed 0.1".
     terms = pairs[pair].lost_motion_arcmin
     assert terms["thickness"] + terms["runout"] == pytest.approx(thickness_runout,
                                                                  abs=0.06 * SECOND)
@@ -296,7 +296,7 @@ def test_khv_stage_play_given_on_the_ring() -> None:
 
 def test_khv_stage_with_the_paper_block() -> None:
     # Pair 1 in a K-H-V stage, ring first: play = the paper's angle (Eq. 1, internal gear),
-    # REFERENCE 6'57.1"; at the output × z_r/z_p = 45/40.
+    # the paper's 6'57.1" (tests/data/published_values.yaml); at the output × z_r/z_p = 45/40.
     block = {"module": 1, "pin_diameter": 1.732, "standard_M": {"R": 42.434, "G": 42.436},
              "measured_M": {"R": [42.479], "G": [42.404]}, "runout": {"R": 0.022, "G": 0.015},
              "bearing_clearance": [0.005, 0.006]}
@@ -336,7 +336,7 @@ def test_two_stages_in_series() -> None:
 def test_li2012_model_train(pairs) -> None:
     # models/backlash_li2012.yaml: pair 1 then pair 2, both K-H-V with Z1 = 45, Z2 = 40
     # (N = 8), ring first. By the two derivations above: output = φ1·(45/40)/8 + φ2·45/40
-    # with φ1, φ2 = REFERENCE's before values 6'57.1", 6'37.1".
+    # with φ1, φ2 = the paper's "before" values 6'57.1", 6'37.1".
     report = analyse_backlash(load_model(LI2012))
     phi1, phi2 = arcmin(6, 57.1), arcmin(6, 37.1)
     parts = (phi1 * 45 / 40 / 8, phi2 * 45 / 40)

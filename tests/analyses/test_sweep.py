@@ -71,7 +71,7 @@ def assert_matches_single(swept, j: int, single) -> None:
     assert bool(swept.self_locking.flat[j]) == single.self_locking
 
 
-# --- against the reference values (tests/data/reference_values.md) ---------------------
+# --- against the reference values (tests/data/published_values.yaml) ---------------------
 
 def test_rv_reference_b_values() -> None:
     r = sweep(model("rv40e.yaml"), {"links.1.efficiency": [0.94, 0.998]})

@@ -1,7 +1,7 @@
 """Wang (2021)'s split/virtual power method and its comparison with the virtual-power
 method (docs/theory.md).
 
-Expected values come from tests/data/reference_values.md or from the paper's
+Expected values come from tests/data/published_values.yaml or from the paper's
 Eqs. (1)–(20) written out below as formulas in the teeth — never from the code under test.
 """
 from __future__ import annotations
@@ -64,7 +64,7 @@ def rv40e():
 
 
 def test_rv40e_printed_digits(rv40e) -> None:
-    # tests/data/reference_values.md (Wang 2021), "printed" column (Eqs. 16-20).
+    # tests/data/published_values.yaml (Wang 2021), "printed" column (Eqs. 16-20).
     assert round(rv40e.split_power, 1) == 2211.8
     assert round(rv40e.paper_virtual_power, 4) == 58.2051
     assert round(rv40e.losses[0], 1) == 136.2
@@ -81,14 +81,14 @@ def test_rv40e_exact_values(rv40e) -> None:
                        ("L1", rv40e.losses[0]), ("L2", rv40e.losses[1]),
                        ("eta", rv40e.efficiency)):
         assert abs(value - RV40E_HAND[key]) < 1e-6, key
-    # reference_values.md (Wang 2021) "exact" column, to its last printed digit
+    # published_values.yaml (Wang 2021) "exact" column, to its last printed digit
     # (0.882061 is within 1e-6:
     # the exact value is 0.88206154, so the column truncates).
     assert rv40e.split_power == pytest.approx(2211.7949, abs=0.5e-4)
     assert rv40e.paper_virtual_power == pytest.approx(58.20513, abs=0.5e-5)
     assert rv40e.losses[1] == pytest.approx(131.52031, abs=0.5e-5)
     assert abs(rv40e.efficiency - 0.882061) < 1e-6
-    # tests/data/reference_values.md (Wang 2021): eta = eta1 - (eta1 + 1/beta)(1 - eta2).
+    # tests/data/published_values.yaml (Wang 2021): eta = eta1 - (eta1 + 1/beta)(1 - eta2).
     assert rv40e.efficiency == pytest.approx(0.94 - (0.94 + 1 / 39) * 0.06, abs=1e-12)
 
 
@@ -98,7 +98,7 @@ def test_rv40e_ratios_from_speeds(rv40e) -> None:
     assert rv40e.alpha == pytest.approx(40, rel=1e-12)     # z5/(z5 - z4)
     w = rv40e.speeds
     assert w["2"] / w["4"] == pytest.approx(RV40E_HAND["i24"], rel=1e-12)  # Eq. (5)
-    # tests/data/reference_values.md (virtual-power RV-40E) speeds with w1 = 1500 rpm.
+    # tests/data/published_values.yaml (virtual-power RV-40E) speeds with w1 = 1500 rpm.
     assert w["3"] == pytest.approx(-50.6290, abs=5e-5)
     assert w["6"] == pytest.approx(1.29818, abs=5e-6)
 
@@ -206,7 +206,7 @@ def test_virtual_power_side_by_side() -> None:
     model = pg.load_model(RV40E)
     comparison = compare_methods(model)
     assert_conservation(comparison.rigorous)
-    # tests/data/reference_values.md (virtual-power RV-40E): 0.287376, L1 135.0744 W, L2 1482.583 W.
+    # tests/data/published_values.yaml (virtual-power RV-40E): 0.287376, L1 135.0744 W, L2 1482.583 W.
     assert comparison.virtual_power_efficiency == pytest.approx(0.287376, abs=5e-7)
     l1, l2 = comparison.virtual_power_losses
     assert l1 == pytest.approx(135.0744, abs=5e-5)
@@ -223,7 +223,7 @@ def test_needle_mesh_case() -> None:
     model = pg.load_model(RV40E).with_link(1, efficiency=0.998)
     comparison = compare_methods(model)
     assert_conservation(comparison.rigorous)
-    # tests/data/reference_values.md (virtual-power RV-40E): 0.873043, L2 153.118 W.
+    # tests/data/published_values.yaml (virtual-power RV-40E): 0.873043, L2 153.118 W.
     assert comparison.virtual_power_efficiency == pytest.approx(0.873043, abs=5e-7)
     assert comparison.virtual_power_losses[1] == pytest.approx(153.118, abs=5e-4)
 

@@ -1,4 +1,4 @@
-"""Cycloid transmission fluctuation from a profile error (seeds/003, Csobán 2021).
+"""Cycloid transmission fluctuation from a profile error (Csobán 2021).
 
 Public API: :func:`cycloid_fluctuation` (one stage), :func:`fluctuation_study` (the paper's
 grid and least-squares refit), :func:`iso_tolerance` / :func:`profile_error_for_grade`

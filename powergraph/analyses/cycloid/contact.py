@@ -1,4 +1,4 @@
-"""Contact of the faulty disc with the pins, vectorised over crank angles (seeds/003 §3).
+"""Contact of the faulty disc with the pins, vectorised over crank angles (Csobán 2021, §3).
 
 Frames and signs. The pins are fixed, pin ``k`` at ``P_k = R_p·exp(2πik/z2)``. The crank
 (input) turns by ``θ``; the disc centre is at ``C = e·exp(iθ)`` and the disc (output) turns

@@ -1,6 +1,6 @@
 """The paper's study (Csobán 2021): maximum fluctuation over a grid, refitted.
 
-Grid (paper Table 3; tests/data/reference_values.md): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3,
+Grid (paper Table 3; tests/data/published_values.yaml): z1 ∈ {9, 25, 43, 53, 117}, x = 0.3,
 rc* = 1, and ``d``
 half the ISO 286 tolerance IT5…IT9 of the pitch diameter ``m·z1``; gears with a pitch
 diameter above 500 mm are left out (the paper drops m = 5, z1 = 117). The maxima are fitted

@@ -83,7 +83,7 @@ class CycloidFluctuation:
     @property
     def large_teeth_limit_percent(self) -> float:
         """``100π·d/(e·z2)``: the maximum deviation as ``z1 → ∞``
-        (tests/data/reference_values.md)."""
+        (tests/data/published_values.yaml)."""
         g = self.geometry
         return 100.0 * math.pi * self.profile_error / (g.eccentricity * g.pins)
 

@@ -1,6 +1,6 @@
-"""Geometry of a cycloid stage (REFERENCE §E): pins, eccentricity, the pin-centre trochoid.
+"""Geometry of a cycloid stage: pins, eccentricity, the pin-centre trochoid.
 
-The seed paper (Csobán 2021) does not state its geometry. We use the one REFERENCE §E gives,
+Csobán (2021) does not state its geometry. We use the one below (tests/data/published_values.yaml),
 which reproduces the paper's four fitted surfaces (see :mod:`.fit`):
 
 - ``z1`` disc teeth, ``z2 = z1 + 1`` pins on the reference circle ``R_p = m·z2/2``;
