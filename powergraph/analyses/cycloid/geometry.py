@@ -1,6 +1,6 @@
 """Geometry of a cycloid stage: pins, eccentricity, the pin-centre trochoid.
 
-Csobán (2021) does not state its geometry. We use the one below (tests/data/published_values.yaml),
+Csobán (2021) does not state its geometry. We use the one below (docs/cycloid.md),
 which reproduces the paper's four fitted surfaces (see :mod:`.fit`):
 
 - ``z1`` disc teeth, ``z2 = z1 + 1`` pins on the reference circle ``R_p = m·z2/2``;
