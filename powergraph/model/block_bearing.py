@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
@@ -102,17 +103,23 @@ def gear_radius(model, link: int, gear: str) -> float | None:
     when neither is given."""
     friction = model.links[link].blocks.get("friction")
     if friction is not None and hasattr(friction, "geometry"):
-        from powergraph.gears.mesh_loss import path_of_contact
-
-        path = path_of_contact(friction.geometry)
-        radius = path.working_radius_1 if gear == friction.gear_1 else path.working_radius_2
-        return abs(radius) / 1000.0
+        radius_1, radius_2 = _working_radii(friction.geometry)
+        return (radius_1 if gear == friction.gear_1 else radius_2) / 1000.0
     component = model.components[gear]
     module = getattr(component.geometry, "module", None)
     if module is None or component.teeth is None or \
             getattr(component.geometry, "shape", None) != "gear":
         return None
     return module * component.teeth / 2000.0
+
+
+@lru_cache(maxsize=1024)
+def _working_radii(geometry) -> tuple[float, float]:
+    """Working pitch radii (mm) of a pair's pinion and wheel (cached: read every pass)."""
+    from powergraph.gears.mesh_loss import path_of_contact
+
+    path = path_of_contact(geometry)
+    return abs(path.working_radius_1), abs(path.working_radius_2)
 
 
 def load_meshes(model, carried: str) -> tuple[tuple[int, str], ...]:

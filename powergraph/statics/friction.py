@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import lru_cache
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
@@ -132,11 +133,25 @@ def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
     return model
 
 
+@lru_cache(maxsize=1024)
+def _path(geometry: Any) -> Any:
+    return path_of_contact(geometry)
+
+
+@lru_cache(maxsize=1024)
+def _loss_factor(geometry: Any) -> float:
+    return mesh_loss(geometry).loss_factor
+
+
+@lru_cache(maxsize=1024)
+def _constant(friction: Any) -> tuple[float, float]:
+    return friction.efficiency()
+
+
 def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     flow = result.element(friction.link)
     link = model.links[friction.link]
-    path = path_of_contact(friction.geometry)
-    radius = path.working_radius_1 / 1000.0                        # m
+    radius = _path(friction.geometry).working_radius_1 / 1000.0     # m
     a, b = link.between
     on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
     torque_1 = (on_a if friction.gear_1 == a else on_b) * flow.force
@@ -145,7 +160,10 @@ def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     relative = speeds[model.body_of[friction.gear_1]] - speeds[model.body_of[link.carrier]]
     force = abs(torque_1) / radius / instances
     pitch_speed = abs(relative) * radius
-    mu, eta = friction.efficiency(force, pitch_speed)
-    h_v = mesh_loss(friction.geometry).loss_factor
+    if friction.load_dependent:
+        mu, eta = friction.efficiency(force, pitch_speed)
+    else:                                   # the same law, cached: it does not change
+        mu, eta = _constant(friction)
+    h_v = _loss_factor(friction.geometry)
     return MeshFrictionState(link=friction.link, model=friction.model, tangential_force=force,
                              pitch_speed=pitch_speed, mu=mu, loss_factor=h_v, efficiency=eta)
