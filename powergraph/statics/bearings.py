@@ -26,6 +26,23 @@ These torques are known once the speeds and the tooth forces are, so the torque 
 takes them as extra known torques on the right-hand side (:func:`with_extra_torques`);
 since ``F`` depends on the balance, :func:`powergraph.statics.friction.solve_with_friction`
 iterates both to a fixed point.
+
+Examples
+--------
+A pair z 20/40 whose driven gear 2 has a seal drag of 0.5 N·m against the housing:
+
+>>> import powergraph as pg
+>>> from powergraph.model import model_from_dict
+>>> m = model_from_dict({"name": "pair", "components": {0: {"role": "frame"},
+...     1: {"teeth": 20}, 2: {"teeth": 40, "drag": {"no_load_torque": 0.5}}},
+...     "links": [{"type": "mesh", "between": [1, 2]}],
+...     "ports": [{"component": 1, "role": "input", "speed": 100, "power": 1000},
+...               {"component": 2, "role": "output"}]})
+>>> r = pg.solve(m)
+>>> [(b.node, b.relative_speed, b.loss) for b in r.bearings]
+[('drag 2', -50.0, 25.0)]
+>>> round(r.efficiency, 12), r.total_loss
+(0.975, 25.0)
 """
 from __future__ import annotations
 
@@ -84,7 +101,11 @@ class BearingState:
 
 def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
     """Every bearing with friction/drag and every body drag of ``model``, evaluated at the
-    speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`)."""
+    speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`).
+
+    The torques are those of this result's forces: the solver iterates until they agree
+    with the torques the balance was solved with.
+    """
     states = []
     for link in model.links:
         if link.type == "bearing" and link.blocks:
@@ -137,7 +158,13 @@ def _radial_load(model: Model, result: Any, carried: str) -> float:
 
 
 def torques_on_bodies(states: tuple[BearingState, ...]) -> dict[str, float]:
-    """The bearings' torques summed per body (N·m), zero entries left out."""
+    """The bearings' torques summed per body (N·m), zero entries left out.
+
+    >>> s = BearingState("drag", None, ("6", "0"), ("6/7", "0"), 1, -2.0, 0.0, 0.0, 0.5,
+    ...                  0.5, 1.0, "drag 6")
+    >>> torques_on_bodies((s,))
+    {'6/7': 0.5, '0': -0.5}
+    """
     out: dict[str, float] = {}
     for state in states:
         for body, torque in state.torques.items():
