@@ -241,3 +241,36 @@ def test_models_without_blocks_are_unchanged_and_zero_blocks_change_nothing(path
     assert (with_zero.input_power, with_zero.output_power, with_zero.total_loss) == \
         (plain.input_power, plain.output_power, plain.total_loss)
     assert [e.force for e in with_zero.elements] == [e.force for e in plain.elements]
+
+
+def test_conservation_checks_catch_wrong_bearing_states() -> None:
+    import dataclasses
+
+    result = solve(model_from_dict(pair({"friction": {"mu": 0.0015, "bore": 20},
+                                         "drag": {"no_load_torque": 0.3}})))
+    state = result.bearings[0]
+    wrong = {
+        "loss not M·|Δω|": dataclasses.replace(state, loss=state.loss * 1.01),
+        "torque driving": dataclasses.replace(state, torque=-state.torque,
+                                              loss=-state.loss),
+        "relative speed": dataclasses.replace(state, relative_speed=2 * state.relative_speed),
+        "torque left out": dataclasses.replace(state, torque=0.0, loss=0.0),
+    }
+    for what, bad in wrong.items():
+        with pytest.raises(AssertionError):
+            assert_conservation(dataclasses.replace(result, bearings=(bad,)))
+            pytest.fail(f"not caught: {what}")
+
+
+def test_cli_solve_json_and_map(tmp_path, capsys) -> None:
+    from powergraph.cli.main import main
+
+    path = tmp_path / "pair.json"
+    path.write_text(json.dumps(pair({"drag": {"no_load_torque": "0.3 N*m"}})))
+    assert main(["solve", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["bearings"][0]["loss"] == pytest.approx(30.0, rel=1e-12)
+    assert data["total_loss"] == pytest.approx(30.0 + 0.02 * 970.0, rel=1e-12)
+    assert main(["map", str(path), "--torque", "5:50:3", "--speed", "500", "--json"]) == 0
+    row = json.loads(capsys.readouterr().out)["efficiency"][0]
+    assert row == sorted(row) and row[0] < row[-1]
