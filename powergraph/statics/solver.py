@@ -14,6 +14,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.statics.bearings import with_extra_torques
 from powergraph.statics.directions import (
     factors_of,
     force_scales,
@@ -22,7 +23,6 @@ from powergraph.statics.directions import (
     settle,
 )
 from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
-from powergraph.statics.bearings import with_extra_torques
 from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
 from powergraph.statics.search import Statics, refine, statics_of
