@@ -132,7 +132,7 @@ def _affine_row(model: Model, speed: float, torques: np.ndarray,
         p_in = ends[0].input_power + share * (ends[1].input_power - ends[0].input_power)
         p_out = ends[0].output_power + share * (ends[1].output_power - ends[0].output_power)
         return p_out / p_in, p_in
-    results = [solve(_at(model, speed, t, sense)) for t in torques]
+    results = ends if len(ends) == 1 else [solve(_at(model, speed, t, sense)) for t in torques]
     return (np.array([r.efficiency for r in results]),
             np.array([r.input_power for r in results]))
 
