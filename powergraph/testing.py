@@ -2,11 +2,14 @@
 
 After a solve these must hold whatever the topology:
 
-- power in = power out + losses (``assert_power_balance``), in the ground frame and seen
-  from every body (losses are frame-invariant);
+- power in = power out + mesh losses + bearing losses (``assert_power_balance``), in the
+  ground frame and seen from every body (losses are frame-invariant);
+- every bearing or body drag opposes its relative rotation: torque ``M >= 0`` applied as
+  ``-M·sign(Δω)`` / ``+M·sign(Δω)`` to its two bodies, loss ``M·|Δω|``
+  (``assert_bearing_law``);
 - every node of the flow graph balances (``assert_flow_balance``);
 - every Willis row, coupling and the frame's zero speed (``assert_kinematics``);
-- every body is in torque equilibrium (``assert_equilibrium``);
+- every body is in torque equilibrium, bearing torques included (``assert_equilibrium``);
 - every loss is >= 0, and each mesh passes power from its driver with its basic
   efficiency in its carrier's frame, or passes nothing with its factor inside
   ``[η, 1/η]`` (it sticks) (``assert_mesh_law``);
@@ -41,9 +44,13 @@ def _scale(result: PowerFlowResult) -> float:
 
 
 def assert_power_balance(result: PowerFlowResult, rtol: float = RTOL) -> None:
-    """Power in = power out + losses; each element's loss equals what flows into it."""
+    """Power in = power out + losses; the total loss is the elements' plus the bearings';
+    no element loses a negative power."""
     _close(result.input_power, result.output_power + result.total_loss, _scale(result),
            rtol, "power in vs power out + losses")
+    _close(result.total_loss, sum(e.loss for e in result.elements)
+           + sum(b.loss for b in getattr(result, "bearings", ())), _scale(result), rtol,
+           "total loss vs mesh losses + bearing losses")
     for element in result.elements:
         if element.loss < -rtol * _scale(result):
             raise AssertionError(f"links[{element.link}] has a negative loss {element.loss}")
@@ -90,6 +97,9 @@ def assert_equilibrium(result: PowerFlowResult, rtol: float = RTOL) -> None:
     for element in result.elements:
         for body, torque in element.torques.items():
             totals[body] += torque
+    for bearing in getattr(result, "bearings", ()):
+        for body, torque in bearing.torques.items():
+            totals[body] += torque
     scale = max([abs(t) for t in result.external_torques.values()] + [1e-12])
     for body, total in totals.items():
         _close(total, 0.0, scale, rtol, f"torque balance of body {body!r}")
@@ -119,6 +129,24 @@ def assert_mesh_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
         _close(fed_out, e.efficiency * fed_in, scale, rtol,
                f"links[{e.link}] carrier-frame output vs efficiency x input")
         _close(e.carrier_frame_power, fed_in, scale, rtol, f"links[{e.link}] virtual power")
+
+
+def assert_bearing_law(result: PowerFlowResult, rtol: float = RTOL) -> None:
+    """Each bearing or drag: its bodies' relative speed as the kinematics give it, a torque
+    ``M >= 0`` (zero without relative motion) opposing it, and the loss ``M·|Δω| >= 0``."""
+    speeds, model = result.kinematics.body_speeds, result.model
+    for b in getattr(result, "bearings", ()):
+        w_1, w_2 = (speeds[model.body_of[c]] for c in b.between)
+        scale = max(abs(w_1), abs(w_2), 1e-300)
+        _close(b.relative_speed, w_1 - w_2, scale, max(rtol, 1e-12), f"{b.node} relative speed")
+        if b.torque < 0 or b.loss < 0 or (b.relative_speed == 0 and b.torque != 0):
+            raise AssertionError(f"{b.node}: torque {b.torque!r} and loss {b.loss!r} must be "
+                                 ">= 0, and 0 without relative motion")
+        _close(b.loss, b.torque * abs(b.relative_speed), max(b.loss, 1e-300), rtol,
+               f"{b.node} loss vs M·|Δω|")
+        on_1 = b.torques[model.body_of[b.between[0]]] if b.bodies[0] != b.bodies[1] else 0.0
+        if on_1 * b.relative_speed > 0:
+            raise AssertionError(f"{b.node}: the torque on the carried body drives it")
 
 
 def assert_locked(result: PowerFlowResult, rtol: float = RTOL) -> None:
@@ -194,6 +222,7 @@ def assert_conservation(result: PowerFlowResult, rtol: float = RTOL) -> None:
     assert_equilibrium(result, rtol)
     assert_power_balance(result, rtol)
     assert_mesh_law(result, rtol)
+    assert_bearing_law(result, rtol)
     assert_flow_balance(result, None, rtol)
     for body in result.model.bodies:
         assert_flow_balance(result, body.members[0], rtol)

@@ -2,6 +2,12 @@
 
 With constant basic efficiencies a train's efficiency does not depend on its load or speed
 (the virtual-power statics are homogeneous), so the map is flat: one solve gives it. With
+bearing friction (``mu``, proportional to the tooth forces) and drags (load-independent)
+but constant mesh efficiencies, the solution at one speed is affine in the output torque as
+long as no element changes its driver and no tooth force loading a bearing changes sign:
+two solves per speed, at the smallest and the largest torque, give the whole row, and the
+row is solved point by point when the two ends disagree (an affine quantity with the same
+sign at both ends keeps it in between). Drag makes such maps rise with torque. With
 load-dependent mesh friction (ISO/TR 14179-2) each point is solved with its own
 load-dependent passes.
 
@@ -24,6 +30,7 @@ from powergraph.errors import UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Model
 from powergraph.statics import solve
+from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
 
 RPM = 2.0 * math.pi / 60.0
@@ -32,7 +39,8 @@ RPM = 2.0 * math.pi / 60.0
 @dataclass(frozen=True)
 class EfficiencyMap:
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
-    ``torques[j]`` (N·m, the load the output drives)."""
+    ``torques[j]`` (N·m, the load the output drives). ``load_dependent`` is True when it
+    varies over the map (load-dependent mesh friction, bearing friction or drag)."""
 
     name: str
     torques: np.ndarray
@@ -52,7 +60,7 @@ class EfficiencyMap:
     def text_report(self) -> str:
         head = "speed rpm \\ torque N·m"
         lines = [f"{self.name} — efficiency map (%)" + ("" if self.load_dependent else
-                 ": constant mesh efficiencies, so it does not vary"),
+                 ": constant mesh efficiencies and no drag, so it does not vary"),
                  f"{head:>22}" + "".join(f"{t:>10.4g}" for t in self.torques)]
         for speed, row in zip(self.speeds_rpm, self.efficiency):
             lines.append(f"{speed:>22.5g}" + "".join(f"{100 * e:>10.3f}" for e in row))
@@ -95,6 +103,9 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     values = np.empty((speeds.size, torques.size))
     power = np.empty_like(values)
     for i, speed in enumerate(speeds):
+        if not dependent and model.has_bearing_losses:
+            values[i], power[i] = _affine_row(model, speed * RPM, torques, sense)
+            continue
         for j, torque in enumerate(torques):
             if not dependent and (i or j):
                 values[i, j] = values[0, 0]
@@ -104,7 +115,26 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
             values[i, j], power[i, j] = result.efficiency, result.input_power
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
-                         load_dependent=dependent, input_power=power)
+                         load_dependent=dependent or model.has_bearing_losses,
+                         input_power=power)
+
+
+def _affine_row(model: Model, speed: float, torques: np.ndarray,
+                sense: float) -> tuple[np.ndarray, np.ndarray]:
+    """Efficiency and input power at one speed over ``torques`` when the solution is affine
+    in the load (constant mesh efficiencies, bearings and drags): from the two end points,
+    or point by point when the ends differ in a driver or a bearing load's sign."""
+    low, high = float(np.min(torques)), float(np.max(torques))
+    ends = [solve(_at(model, speed, t, sense)) for t in ((low, high) if high > low else (low,))]
+    if len(ends) == 2 and all(r.lock is None for r in ends) and \
+            load_regime(model, ends[0]) == load_regime(model, ends[1]):
+        share = (torques - low) / (high - low)
+        p_in = ends[0].input_power + share * (ends[1].input_power - ends[0].input_power)
+        p_out = ends[0].output_power + share * (ends[1].output_power - ends[0].output_power)
+        return p_out / p_in, p_in
+    results = ends if len(ends) == 1 else [solve(_at(model, speed, t, sense)) for t in torques]
+    return (np.array([r.efficiency for r in results]),
+            np.array([r.input_power for r in results]))
 
 
 def _at(model: Model, speed: float, torque: float, sense: float) -> Model:

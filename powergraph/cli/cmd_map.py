@@ -32,7 +32,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "map", help="efficiency over output torque × input speed",
         description="Efficiency map of a 1-DOF train with one input and one output: the "
                     "output drives a load torque at each input speed. Flat unless a mesh's "
-                    "friction depends on the load (friction: {model: iso14179, ...}).")
+                    "friction depends on the load (friction: {model: iso14179, ...}) or "
+                    "bearings carry friction or drag (docs/losses.md).")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("--torque", type=span_arg, required=True, metavar="A:B:N",
                         help="output load torques, N·m")

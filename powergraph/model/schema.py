@@ -301,9 +301,36 @@ _COMPONENT = {
         "count": _integer("count", "Identical parts in parallel (planets): losses and "
                           "volumes count each.", 1, MAX_COUNT, default=1),
         "geometry": _ref("geometry"),
+        "drag": _ref("drag", description="The body's no-load drag against the frame (seals, "
+                                         "churning; docs/losses.md)."),
         "note": _text("note", "Free text, ignored by the analyses."),
     },
     "additionalProperties": False,
+}
+
+_TORQUE_0 = {"minimum": 0, "maximum": MAX_TORQUE}
+_DRAG = {
+    "type": "object", "title": "no-load drag",
+    "description": "Load-independent drag torque per instance, opposing the relative "
+                   "rotation: no_load_torque, or a + b*|n| with n the relative speed in rpm "
+                   "(docs/losses.md).",
+    "properties": {
+        "no_load_torque": _quantity("torque", "no_load_torque", "Constant drag torque.",
+                                    **_TORQUE_0),
+        "a": _quantity("torque", "a", "Constant part of the drag. Default 0.", **_TORQUE_0),
+        "b": _quantity("torque", "b", "Drag per rpm of relative speed. Default 0.",
+                       **_TORQUE_0)},
+    "additionalProperties": False, "minProperties": 1,
+}
+_BEARING_FRICTION = {
+    "type": "object", "title": "bearing friction",
+    "description": "Load-dependent friction torque M = mu*F*bore/2 per bearing, F the "
+                   "radial load from the carried member's tooth forces (docs/losses.md).",
+    "properties": {
+        "mu": {"type": "number", "minimum": 0, "maximum": 1, "title": "mu",
+               "description": "Constant friction coefficient of the bearing, in [0, 1]."},
+        "bore": _length("bore", "Bore diameter of the bearing.", True)},
+    "additionalProperties": False, "required": ["mu", "bore"],
 }
 
 _PORT = {
@@ -378,11 +405,15 @@ MODEL_SCHEMA: dict[str, Any] = {
                                            "description": "Efficiency in (0, 1]. Default "
                                                           "1."}}),
                      _link("bearing", "Records which member carries which (between: [planet, "
-                           "carrier]); passes no power and sets no speed.", {}),
+                           "carrier]); sets no speed; passes no power unless it has "
+                           "friction or drag (docs/losses.md).",
+                           {"friction": _ref("bearingFriction"), "drag": _ref("drag")}),
                  ]},
         "backlash": _BACKLASH,
         "cycloid": _CYCLOID,
         "friction": _FRICTION,
+        "bearingFriction": _BEARING_FRICTION,
+        "drag": _DRAG,
         "meshGeometry": _MESH_GEOMETRY,
         "port": _PORT,
     },

@@ -30,6 +30,7 @@ class Component:
     count: int = 1
     geometry: Any = None
     note: str | None = None
+    drag: Any = None  # no-load drag against the frame (block_bearing.Drag; docs/losses.md)
 
     @property
     def is_frame(self) -> bool:
@@ -121,6 +122,12 @@ class Model:
     @cached_property
     def meshes(self) -> tuple[Link, ...]:
         return tuple(link for link in self.links if link.type == "mesh")
+
+    @cached_property
+    def has_bearing_losses(self) -> bool:
+        """True when a bearing has ``friction``/``drag`` or a component has ``drag``."""
+        return any(c.drag is not None for c in self.components.values()) or any(
+            link.type == "bearing" and link.blocks for link in self.links)
 
     @cached_property
     def inputs(self) -> tuple[Port, ...]:

@@ -73,6 +73,10 @@ def _model(data: Any, source: str | None) -> Model:
                   components=MappingProxyType(components), links=links, ports=ports,
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source)
     check_topology(model)
+    if model.has_bearing_losses:
+        from powergraph.model.block_bearing import check_bearing_loads
+
+        check_bearing_loads(model)
     if "tolerances" in data:
         from powergraph.model.blocks import validate_tolerances
 
@@ -113,10 +117,17 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
         from powergraph.model.block_geometry import validate_geometry
 
         geometry = validate_geometry(geometry, f"{path}.geometry", teeth=teeth)
+    drag = attrs.get("drag")
+    if drag is not None:
+        from powergraph.model.block_bearing import parse_drag
+
+        if attrs.get("role") == "frame":
+            raise ModelError("the frame does not turn, so it has no drag", f"{path}.drag")
+        drag = parse_drag(drag, f"{path}.drag")
     return Component(id=cid, raw_id=raw_id, name=_text(attrs.get("name")),
                      role=attrs.get("role"), kind=_text(attrs.get("kind")), teeth=teeth,
                      internal=attrs.get("internal", False), count=attrs.get("count", 1),
-                     geometry=geometry, note=_text(attrs.get("note")))
+                     geometry=geometry, note=_text(attrs.get("note")), drag=drag)
 
 
 def _ref(raw: Any, components: Mapping[str, Component], path: str) -> str:
@@ -137,6 +148,10 @@ def _link(raw: Mapping, index: int, components: Mapping[str, Component], frame: 
         fields = _mesh_fields(raw, path, (a, b), components, frame, default_eta)
     elif kind == "coupling" and "efficiency" in raw:
         fields["efficiency"] = float(raw["efficiency"])
+    elif kind == "bearing" and ("friction" in raw or "drag" in raw):
+        from powergraph.model.block_bearing import parse_bearing_blocks
+
+        fields["blocks"] = MappingProxyType(parse_bearing_blocks(raw, path))
     return Link(index=index, type=kind, between=(a, b), raw_between=tuple(between),
                 name=_text(raw.get("name")), **fields)
 

@@ -4,7 +4,9 @@ Bodies are boxes labelled with their components ("2/3"), meshes are circles, cou
 squares, the motor ⊙ and the generator ⊗; every arrow carries a power, its width
 proportional to it, labelled with the power and its share of the input power P.
 Zero-power links (the held frame's, the paper's converting principle 1) are dashed.
-Losses leave each mesh into a "loss" sink; arrows on a circulating loop are red.
+Bearings with friction or drag ("bearing 2-7") and body drags ("drag 6") are rounded
+boxes with a loss outline. Losses leave each mesh, bearing and drag into a "loss" sink;
+arrows on a circulating loop are red.
 ``frame`` draws the transformation gear train: the virtual powers seen from that body.
 
 The content comes from :func:`powergraph.plot.layout.view.flow_view` and the geometry
@@ -36,6 +38,7 @@ from powergraph.plot.layout.view import FlowView, flow_view, format_power, forma
 INK = "#1f3b5c"
 COLOURS = {"power": "#2c6fad", "zero": "#8a8a8a", "loss": "#b5651d", "loop": "#c0392b"}
 FILLS = {"body": "#e8f0fa", "frame": "#e3e3e3", "mesh": "white", "coupling": "#f1f1f1",
+         "bearing": "#fdf3e7", "drag": "#fdf3e7",
          "loss": "#fbe9d6", "motor": "white", "generator": "white", "ground": "white"}
 INCH = 72.0
 
@@ -161,7 +164,7 @@ def _boxed(ax, node: NodePlace, box: Box, s: float):
     style = "square,pad=0" if kind == "coupling" else "round,pad=0,rounding_size=3"
     patch = FancyBboxPatch((box.x0, box.y0), box.x1 - box.x0, box.y1 - box.y0,
                            boxstyle=style, fc=FILLS.get(kind, "white"),
-                           ec=COLOURS["loss"] if kind == "loss" else INK,
+                           ec=COLOURS["loss"] if kind in ("loss", "bearing", "drag") else INK,
                            lw=(1.6 if kind == "frame" else 1.0) * s, zorder=4,
                            hatch="////" if kind == "frame" else None)
     ax.add_patch(patch)

@@ -1,7 +1,8 @@
 """The power-flow graph of a solved train, seen from the ground or from any body.
 
-Nodes: bodies ("2/3"), elements ("mesh 1-2", "coupling 4-6"), the motor(s), the
-generator(s), "loss", and "ground" (the world's reaction on the frame, which does work
+Nodes: bodies ("2/3"), elements ("mesh 1-2", "coupling 4-6"), bearings with friction or
+drag ("bearing 2-7") and body drags ("drag 6"), the motor(s), the generator(s), "loss",
+and "ground" (the world's reaction on the frame, which does work
 only when the powers are seen from a moving body). The power from body X into element e
 is ``-T_eX · (w_X - w_F)`` with F the observing body (DESIGN §3); losses are the same in
 every frame.
@@ -81,12 +82,17 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
             edges.append(_oriented(body, node, -torque * (kin.body_speeds[body] - w_f)))
         if element.loss > 0 or element.efficiency < 1:
             edges.append(Flow(node, LOSS, element.loss))
+    for bearing in result.bearings:     # docs/losses.md: a torque pair opposing Δω
+        for body, torque in bearing.torques.items():
+            edges.append(_oriented(body, bearing.node, -torque * (kin.body_speeds[body] - w_f)))
+        edges.append(Flow(bearing.node, LOSS, bearing.loss))
     return edges
 
 
 def flow_graph(result: "PowerFlowResult", frame: str | None = None) -> "nx.DiGraph":
     """The flow edges as a networkx DiGraph with ``power`` on each edge and a ``kind`` on
-    each node (body, frame, mesh, coupling, motor, generator, loss, ground)."""
+    each node (body, frame, mesh, coupling, bearing, drag, motor, generator, loss,
+    ground)."""
     import networkx as nx
 
     graph = nx.DiGraph(frame=frame)
@@ -96,6 +102,8 @@ def flow_graph(result: "PowerFlowResult", frame: str | None = None) -> "nx.DiGra
                        members=body.members)
     for element in result.elements:
         graph.add_node(element_node(result, element), kind=element.kind, link=element.link)
+    for bearing in result.bearings:
+        graph.add_node(bearing.node, kind=bearing.kind, link=bearing.link)
     for edge in flow_edges(result, frame):
         for node in (edge.source, edge.target):
             if node not in graph:

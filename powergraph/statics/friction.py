@@ -1,17 +1,24 @@
-"""Load-dependent mesh losses: iterate forces → friction coefficients → efficiencies.
+"""Load-dependent losses: iterate forces → friction coefficients and bearing torques.
 
 A mesh whose ``friction:`` block follows ISO/TR 14179-2 has a mean coefficient of friction
 that depends on its tooth load and pitch-line speed, both in its carrier's frame, so its
-basic efficiency depends on the solution. Starting ideal, each pass solves the train with
-the current efficiencies, reads every such mesh's tangential force and speed, and updates
-its efficiency, until no efficiency changes by more than ``tolerance``. The coefficient
-grows only as the load to the power 0.2, so the passes contract quickly (three to six).
-Meshes with a constant coefficient have a constant efficiency and need no pass.
+basic efficiency depends on the solution. A bearing with ``friction: {mu, bore}`` has a
+torque proportional to its radial load, taken from the tooth forces
+(:mod:`powergraph.statics.bearings`), and bearing and body drags add torques that depend
+on the speeds only. Starting ideal and without bearing torques, each pass solves the train
+with the current efficiencies and bearing torques (as known torques in the balance), reads
+every friction mesh's force and speed and every bearing's load, and updates both, until no
+efficiency changes by more than ``tolerance`` and no bearing torque by more than
+``tolerance`` times the largest torque of the train. The coefficient grows only as the load
+to the power 0.2, and a bearing's torque is a small fraction of the torques that load it,
+so the passes contract quickly (three to six). Meshes with a constant coefficient have a
+constant efficiency; drags alone need one more pass.
 """
 from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
+from functools import lru_cache
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
@@ -19,6 +26,7 @@ from powergraph.errors import SolveError
 from powergraph.gears.mesh_loss import mesh_loss, path_of_contact
 from powergraph.kinematics.elements import element_stencil
 from powergraph.model.spec import Model
+from powergraph.statics.bearings import bearing_states, torques_on_bodies, with_bearings
 
 MAX_PASSES = 60
 
@@ -51,50 +59,70 @@ def friction_meshes(model: Model) -> dict[int, Any]:
             if link.type == "mesh" and "friction" in link.blocks}
 
 
-def solve_with_friction(model: Model, solve: Callable[[Model], Any], tolerance: float = 1e-12,
-                        max_passes: int = MAX_PASSES) -> Any:
-    """Solve ``model`` with its load-dependent mesh efficiencies made consistent.
+def solve_with_friction(model: Model, solve: Callable[[Model, Mapping[str, float]], Any],
+                        tolerance: float = 1e-12, max_passes: int = MAX_PASSES) -> Any:
+    """Solve ``model`` with its load-dependent mesh efficiencies and bearing torques made
+    consistent.
 
     Parameters
     ----------
     model : Model
         The train; its friction meshes' ``efficiency`` is replaced pass by pass in copies.
     solve : callable
-        The fixed-efficiency solver (``Model -> PowerFlowResult``).
+        The fixed-efficiency solver (``(Model, {body: bearing torque}) -> PowerFlowResult``).
     tolerance : float
-        Largest change of any efficiency between the last two passes.
+        Largest change of any efficiency, and of any bearing torque relative to the largest
+        torque of the train, between the last two passes.
 
     Returns
     -------
     PowerFlowResult
-        Of ``model``, with ``friction`` (the meshes' states) and ``friction_passes``.
+        Of ``model``, with ``friction`` (the meshes' states), ``bearings`` (the bearings'
+        and drags' states, their losses in ``total_loss``) and ``friction_passes``.
 
     Raises
     ------
     SolveError
-        When the efficiencies do not converge in ``max_passes``.
+        When the efficiencies or bearing torques do not converge in ``max_passes``.
     """
     frictions = friction_meshes(model)
     current = {k: (1.0 if f.load_dependent else f.efficiency()[1]) for k, f in frictions.items()}
+    extra: dict[str, float] = {}
     passes = 0
     while True:
         passes += 1
-        result = solve(_fixed(model, current))
+        result = solve(_fixed(model, current), extra)
         states = tuple(_state(model, result, frictions[k]) for k in sorted(frictions))
+        bearings = bearing_states(model, result) if model.has_bearing_losses else ()
+        torques = torques_on_bodies(bearings)
         change = max((abs(s.efficiency - current[s.link]) for s in states), default=0.0)
-        if change <= tolerance or not any(f.load_dependent for f in frictions.values()):
+        moved = _torque_change(extra, torques, result)
+        if change <= tolerance and moved <= tolerance:
+            result = with_bearings(model, result, bearings, extra) if bearings else result
             return dataclasses.replace(result, model=model, friction=states,
                                        friction_passes=passes)
         if passes == max_passes:
             break
         current = {s.link: s.efficiency for s in states}
-    raise SolveError(f"the load-dependent mesh efficiencies did not converge in {max_passes} "
-                     f"passes (last change {change:.3g})")
+        extra = torques
+    raise SolveError(f"the load-dependent mesh efficiencies and bearing torques did not "
+                     f"converge in {max_passes} passes (last change {max(change, moved):.3g})")
+
+
+def _torque_change(old: Mapping[str, float], new: Mapping[str, float], result: Any) -> float:
+    """Largest change of a body's bearing torque, relative to the largest torque acting."""
+    moved = max((abs(new.get(b, 0.0) - old.get(b, 0.0)) for b in {*old, *new}), default=0.0)
+    if not moved:
+        return 0.0
+    scale = max([abs(t) for t in result.external_torques.values()]
+                + [abs(t) for t in new.values()])
+    return moved / scale
 
 
 def needs_friction(model: Model) -> bool:
-    """True when a mesh of ``model`` carries a ``friction:`` block."""
-    return any("friction" in link.blocks for link in model.links)
+    """True when a mesh or bearing of ``model`` carries a ``friction:`` block, or a
+    bearing or component a ``drag:`` block."""
+    return model.has_bearing_losses or any("friction" in link.blocks for link in model.links)
 
 
 def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
@@ -105,11 +133,25 @@ def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
     return model
 
 
+@lru_cache(maxsize=1024)
+def _path(geometry: Any) -> Any:
+    return path_of_contact(geometry)
+
+
+@lru_cache(maxsize=1024)
+def _loss_factor(geometry: Any) -> float:
+    return mesh_loss(geometry).loss_factor
+
+
+@lru_cache(maxsize=1024)
+def _constant(friction: Any) -> tuple[float, float]:
+    return friction.efficiency()
+
+
 def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     flow = result.element(friction.link)
     link = model.links[friction.link]
-    path = path_of_contact(friction.geometry)
-    radius = path.working_radius_1 / 1000.0                        # m
+    radius = _path(friction.geometry).working_radius_1 / 1000.0     # m
     a, b = link.between
     on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
     torque_1 = (on_a if friction.gear_1 == a else on_b) * flow.force
@@ -118,7 +160,10 @@ def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     relative = speeds[model.body_of[friction.gear_1]] - speeds[model.body_of[link.carrier]]
     force = abs(torque_1) / radius / instances
     pitch_speed = abs(relative) * radius
-    mu, eta = friction.efficiency(force, pitch_speed)
-    h_v = mesh_loss(friction.geometry).loss_factor
+    if friction.load_dependent:
+        mu, eta = friction.efficiency(force, pitch_speed)
+    else:                                   # the same law, cached: it does not change
+        mu, eta = _constant(friction)
+    h_v = _loss_factor(friction.geometry)
     return MeshFrictionState(link=friction.link, model=friction.model, tangential_force=force,
                              pitch_speed=pitch_speed, mu=mu, loss_factor=h_v, efficiency=eta)

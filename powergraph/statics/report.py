@@ -49,10 +49,15 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
 
 
 def _friction_dict(result: PowerFlowResult) -> dict[str, Any]:
-    if not result.friction:
-        return {}
-    return {"friction": [state.to_dict() for state in result.friction],
-            "friction_passes": result.friction_passes}
+    out: dict[str, Any] = {}
+    if result.friction:
+        out["friction"] = [state.to_dict() for state in result.friction]
+    if result.bearings:
+        out["bearings"] = [state.to_dict(result.model) for state in result.bearings]
+        out["bearing_loss"] = result.bearing_loss
+    if out:
+        out["friction_passes"] = result.friction_passes
+    return out
 
 
 def _fmt_power(watts: float) -> str:
@@ -113,6 +118,7 @@ def text_report(result: PowerFlowResult) -> str:
                      f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.carrier_frame_power):>18}"
                      f"{_fmt_power(e.loss):>14}")
     lines += _friction_lines(result)
+    lines += _bearing_lines(result)
     if result.load_sharing_assumed:
         lines += ["", "note: load sharing between parallel paths is statically indeterminate; "
                   "the minimum-norm (equal) sharing was assumed"]
@@ -130,4 +136,19 @@ def _friction_lines(result: PowerFlowResult) -> list[str]:
         lines.append(f"  {s.link:<6}{s.model:<10}{s.tangential_force:>12.5g}"
                      f"{s.pitch_speed:>10.4g}{s.mu:>9.4g}{s.loss_factor:>9.4g}"
                      f"{s.efficiency:>10.6f}")
+    return lines
+
+
+def _bearing_lines(result: PowerFlowResult) -> list[str]:
+    if not result.bearings:
+        return []
+    raw = result.model.raw_id
+    lines = ["", "bearings and drag (F, friction and drag torques per instance; M the total)",
+             f"  {'node':<16}{'between':<10}{'n rel rpm':>11}{'F N':>11}{'M_mu N·m':>11}"
+             f"{'M0 N·m':>10}{'M N·m':>10}{'loss':>14}"]
+    for b in result.bearings:
+        between = f"{raw(b.between[0])}-{raw(b.between[1])}"
+        lines.append(f"  {b.node:<16}{between:<10}{b.relative_speed * RPM:>11.5g}"
+                     f"{b.radial_load:>11.5g}{b.friction_torque:>11.4g}{b.drag_torque:>10.4g}"
+                     f"{b.torque:>10.4g}{_fmt_power(b.loss):>14}")
     return lines

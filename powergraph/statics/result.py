@@ -107,6 +107,9 @@ class PowerFlowResult:
     #: passes of the load-dependent iteration (0 when no efficiency depends on the load).
     friction: tuple = ()
     friction_passes: int = 0
+    #: Bearing friction and body drag (BearingState, powergraph.statics.bearings): their
+    #: losses are in ``total_loss``, their torques act on the bodies beside the elements'.
+    bearings: tuple = ()
     lock: Lock | None = None                 # set when the train cannot move as asked
     search: DirectionSearch | None = None    # set when the fixed-point iteration cycled
 
@@ -153,6 +156,11 @@ class PowerFlowResult:
     @property
     def meshes(self) -> tuple[ElementFlow, ...]:
         return tuple(e for e in self.elements if e.kind == "mesh")
+
+    @property
+    def bearing_loss(self) -> float:
+        """Total loss of the bearings and body drags (W)."""
+        return float(sum(b.loss for b in self.bearings))
 
     def element(self, link: int) -> ElementFlow:
         """The element of ``links[link]``."""

@@ -14,6 +14,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.statics.bearings import with_extra_torques
 from powergraph.statics.directions import (
     factors_of,
     force_scales,
@@ -30,7 +31,8 @@ from powergraph.statics.search import Statics, refine, statics_of
 WIDE_RANGE = 1e-6
 
 
-def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowResult:
+def solve(model: Model, speeds: Mapping[str, float] | None = None,
+          extra_torques: Mapping[str, float] | None = None) -> PowerFlowResult:
     """Solve speeds, torques, power directions, losses and efficiency.
 
     Each mesh's basic efficiency is applied to the power it passes in its carrier's
@@ -42,6 +44,10 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
         The validated train; it is not changed.
     speeds : mapping, optional
         ``{component id: rad/s}`` overriding the ports' speeds.
+    extra_torques : mapping, optional
+        ``{body: N·m}`` known bearing torques, set by the bearing iteration
+        (:mod:`powergraph.statics.bearings`); the result's external torques then include
+        them (the iteration takes them out).
 
     Returns
     -------
@@ -67,11 +73,13 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     >>> round(r.efficiency, 12), round(r.ratio, 12), round(r.total_loss, 9)
     (0.98, -2.0, 20.0)
     """
-    if needs_friction(model):
-        return solve_with_friction(model, lambda fixed: solve(fixed, speeds))
+    if extra_torques is None and needs_friction(model):
+        return solve_with_friction(model, lambda fixed, extra: solve(fixed, speeds, extra))
     kin = solve_speeds(model, speeds)
     elements = elements_of(model)
     loads = loads_of(model, kin)
+    if extra_torques:
+        loads = with_extra_torques(loads, extra_torques)
     rel = relative_speeds(elements, kin)
 
     st = statics_of(model, elements, loads, rel)

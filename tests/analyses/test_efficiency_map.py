@@ -84,3 +84,75 @@ def test_cli_bad_arguments_exit_2(tmp_path, capsys, args, fragment) -> None:
     path.write_text(json.dumps(ISO_PAIR))
     assert _status(["map", str(path), *args]) == 2
     assert fragment in capsys.readouterr().err
+
+
+def _pair_with_shaft_bearing(bearing: dict | None) -> dict:
+    """Gears z 20/40 (η 0.98, r1 = m·z/2 = 20 mm from gear 1's geometry); gear 1's shaft in
+    a bearing on the housing."""
+    links = [{"type": "mesh", "between": [1, 2], "efficiency": 0.98}]
+    if bearing is not None:
+        links.append({"type": "bearing", "between": [1, 0], **bearing})
+    return {"name": "pair with a shaft bearing",
+            "components": {0: {"role": "frame"},
+                           1: {"teeth": 20, "geometry": {"module": 2, "face_width": 10,
+                                                         "bore_radius": 0}},
+                           2: {"teeth": 40}},
+            "links": links,
+            "ports": [{"component": 1, "role": "input", "speed": 100.0},
+                      {"component": 2, "role": "output", "torque": 50.0}]}
+
+
+def test_drag_makes_the_map_rise_with_torque_as_the_closed_form() -> None:
+    # Output load T on gear 2 (ratio 2): gear 1's teeth carry T/(2η); the shaft bearing
+    # adds M = c·T/(2η) + T0 with c = mu·d/(2·r1), so T_in = (1 + c)·T/(2η) + T0 and
+    #   η_train = T·(w/2)/(T_in·w) = T / ((1 + c)·T/η + 2·T0),
+    # which rises with T towards η/(1 + c) and does not depend on the speed (T0 constant).
+    from powergraph.testing import assert_conservation
+
+    eta, mu, d, r1, t0 = 0.98, 0.002, 0.020, 0.020, 0.4
+    c = mu * d / (2 * r1)
+    model = model_from_dict(_pair_with_shaft_bearing(
+        {"friction": {"mu": mu, "bore": "20 mm"}, "drag": {"no_load_torque": t0}}))
+    torques = np.array([5.0, 20.0, 60.0, 150.0])
+    emap = efficiency_map(model, torques, [300.0, 3000.0])
+    closed = torques / ((1 + c) * torques / eta + 2 * t0)
+    assert emap.load_dependent
+    assert np.allclose(emap.efficiency, closed[None, :], rtol=1e-10, atol=0)
+    assert np.all(np.diff(emap.efficiency, axis=1) > 0)
+    # Points between the two solved ends are the train's own solves (gear 2 turns
+    # backwards, so the resisting load torque on it is positive).
+    for rpm in (300.0, 3000.0):
+        result = pg.solve(model.with_port(0, speed=rpm * math.pi / 30)
+                          .with_port(1, torque=20.0))
+        assert_conservation(result)
+        assert result.efficiency == pytest.approx(emap.efficiency[0 if rpm == 300 else 1, 1],
+                                                  rel=1e-10)
+
+
+def test_without_drag_the_map_is_flat() -> None:
+    emap = efficiency_map(model_from_dict(_pair_with_shaft_bearing(None)), [5.0, 50.0, 150.0],
+                          [300.0, 3000.0])
+    assert not emap.load_dependent
+    assert np.allclose(emap.efficiency, 0.98, rtol=1e-12, atol=0)
+
+
+def test_speed_dependent_drag_lowers_the_efficiency_with_speed() -> None:
+    # Drag a + b·|n|: at n1 rpm on gear 1, T_in = T/(2η) + a + b·n1.
+    model = model_from_dict(_pair_with_shaft_bearing({"drag": {"a": 0.1, "b": 0.001}}))
+    emap = efficiency_map(model, [10.0, 100.0], [500.0, 2000.0])
+    for i, rpm in enumerate((500.0, 2000.0)):
+        for j, torque in enumerate((10.0, 100.0)):
+            t_in = torque / (2 * 0.98) + 0.1 + 0.001 * rpm
+            assert emap.efficiency[i, j] == pytest.approx(torque / (2 * t_in), rel=1e-10)
+    assert np.all(np.diff(emap.efficiency, axis=0) < 0)
+
+
+def test_rows_whose_ends_differ_are_solved_point_by_point(monkeypatch) -> None:
+    import powergraph.analyses.efficiency_map as module
+
+    model = model_from_dict(_pair_with_shaft_bearing({"drag": {"no_load_torque": 0.4}}))
+    affine = efficiency_map(model, [5.0, 20.0, 60.0], [300.0])
+    calls = iter(range(10 ** 6))
+    monkeypatch.setattr(module, "load_regime", lambda m, r: next(calls))
+    pointwise = efficiency_map(model, [5.0, 20.0, 60.0], [300.0])
+    assert np.allclose(pointwise.efficiency, affine.efficiency, rtol=1e-10, atol=0)

@@ -306,3 +306,37 @@ def test_back_driven_rv_is_marked_self_locking(solve_ok) -> None:
     assert "SELF-LOCKING" in ax.get_title()
     assert "SELF-LOCKING" not in plot_power_flow(
         solve_ok(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))).get_title()
+
+
+BEARINGS = """
+name: pair with bearings
+components:
+  0: {role: frame}
+  1: {teeth: 20, geometry: {module: 2, face_width: 10, bore_radius: 0}}
+  2: {teeth: 40, drag: {no_load_torque: 0.5 N*m}}
+links:
+  - {type: mesh, between: [1, 2], efficiency: 0.98}
+  - {type: bearing, between: [1, 0], friction: {mu: 0.0015, bore: 20 mm}, drag: {a: 0.1 N*m, b: 0.002 N*m}}
+ports:
+  - {component: 1, role: input, speed: 1000 rpm, power: 1 kW}
+  - {component: 2, role: output}
+"""
+
+
+def test_bearings_and_drags_are_drawn_as_loss_nodes(solve_ok, tmp_path) -> None:
+    from powergraph.cli.main import main
+
+    result = solve_ok(loads_model(BEARINGS))
+    for frame in (None, "2"):
+        ax = plot_power_flow(result, frame)
+        check_drawing(result, frame, ax)
+        nodes = ax.powergraph_nodes
+        assert nodes["bearing 1-0"][1].get_text() == "bearing 1-0"
+        assert nodes["drag 2"][0].get_edgecolor()[:3] == matplotlib.colors.to_rgb(COLOURS["loss"])
+        assert ax.powergraph_view.kinds["drag 2"] == "drag"
+        assert ("bearing 1-0", "loss") in ax.powergraph_artists
+        plt.close(ax.figure)
+    path = tmp_path / "pair.yaml"
+    path.write_text(BEARINGS)
+    assert main(["draw", str(path), "-o", str(tmp_path / "flow.png")]) == 0
+    assert (tmp_path / "flow.png").stat().st_size > 1000

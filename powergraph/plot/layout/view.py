@@ -28,7 +28,8 @@ from powergraph.errors import UsageError
 from powergraph.statics.flow import GENERATOR, GROUND, LOSS, MOTOR, Flow, circulating_power
 
 #: Node kinds a diagram knows how to draw.
-KINDS = ("body", "frame", "mesh", "coupling", "motor", "generator", "loss", "ground")
+KINDS = ("body", "frame", "mesh", "coupling", "bearing", "drag", "motor", "generator", "loss",
+         "ground")
 
 
 @dataclass(frozen=True)
@@ -227,7 +228,7 @@ def _kind_from_name(node: str) -> str:
     head = node.split(" ")[0]
     if head in (MOTOR, GENERATOR) or node in (LOSS, GROUND):
         return head
-    if head in ("mesh", "coupling") and " " in node:
+    if head in ("mesh", "coupling", "bearing", "drag") and " " in node:
         return head
     return "body"
 

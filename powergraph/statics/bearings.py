@@ -1,0 +1,221 @@
+"""Bearing friction and no-load drag as losses (docs/losses.md).
+
+A bearing ``between: [carried, carrying]`` with ``friction: {mu, bore}`` and/or ``drag``,
+and a component with ``drag`` (against the frame), each apply a friction torque ``M`` to
+their two bodies, opposing their relative rotation ``Δω = w_1 - w_2``: ``-M·sign(Δω)`` on
+the first, ``+M·sign(Δω)`` on the second. Its loss is ``M·|Δω| >= 0``. Per instance,
+
+    M_1 = mu · F · bore / 2  +  M0,     M0 = no_load_torque   or   a + b·|n_rel|  (rpm)
+
+and ``M = instances · M_1`` with ``instances = max(count)`` of the two members (a
+component's own ``count`` for its drag). At ``Δω = 0`` the torque is set-valued (static
+friction); the model takes it as 0, which is also what a locked train at rest gets.
+
+**The radial load F** (per instance) is not part of a torque-only model; powergraph takes
+it from the tooth forces on the carried member: for every mesh in which a gear of the
+carried member's rigid body takes part, the tangential tooth force ``|T_gear| / r_w`` (the
+mesh's torque on that gear over its working pitch radius, shared by the mesh's ``count``
+instances), summed as magnitudes. The scalar sum is exact for a planet of a simple 2K-H
+set (the sun and the ring push it the same way, so its bearing carries twice the tooth
+force) and for a gear on a shaft with one mesh; otherwise it is an upper bound of the
+vector sum. Radial tooth-force components (``F_t·tan α``), weights, and the forces a
+carrier receives from the gears it carries are not counted. A carried member without
+gears in mesh has ``F = 0``: only its drag applies.
+
+These torques are known once the speeds and the tooth forces are, so the torque balance
+takes them as extra known torques on the right-hand side (:func:`with_extra_torques`);
+since ``F`` depends on the balance, :func:`powergraph.statics.friction.solve_with_friction`
+iterates both to a fixed point.
+
+Examples
+--------
+A pair z 20/40 whose driven gear 2 has a seal drag of 0.5 N·m against the housing:
+
+>>> import powergraph as pg
+>>> from powergraph.model import model_from_dict
+>>> m = model_from_dict({"name": "pair", "components": {0: {"role": "frame"},
+...     1: {"teeth": 20}, 2: {"teeth": 40, "drag": {"no_load_torque": 0.5}}},
+...     "links": [{"type": "mesh", "between": [1, 2]}],
+...     "ports": [{"component": 1, "role": "input", "speed": 100, "power": 1000},
+...               {"component": 2, "role": "output"}]})
+>>> r = pg.solve(m)
+>>> [(b.node, b.relative_speed, b.loss) for b in r.bearings]
+[('drag 2', -50.0, 25.0)]
+>>> round(r.efficiency, 12), r.total_loss
+(0.975, 25.0)
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, Mapping
+
+from powergraph.kinematics import element_stencil
+from powergraph.model.block_bearing import gear_radius, load_meshes
+from powergraph.model.spec import Model
+from powergraph.statics.equilibrium import Loads, loads_of
+
+#: Relative speeds below this fraction of the two bodies' speeds are zero.
+SPEED_NOISE = 1e-12
+
+
+@dataclass(frozen=True)
+class BearingState:
+    """One bearing (``kind="bearing"``) or body drag (``kind="drag"``) at the solution.
+
+    ``between`` are the two members (component ids; the frame for a drag), ``bodies``
+    their bodies; ``relative_speed`` is ``w_1 - w_2`` (rad/s); ``radial_load`` (N),
+    ``friction_torque`` and ``drag_torque`` (N·m) are per instance; ``torque`` (N·m, >= 0)
+    is the total of ``instances``; ``loss = torque · |relative_speed|`` (W).
+    """
+
+    kind: str
+    link: int | None
+    between: tuple[str, str]
+    bodies: tuple[str, str]
+    instances: int
+    relative_speed: float
+    radial_load: float
+    friction_torque: float
+    drag_torque: float
+    torque: float
+    loss: float
+    node: str
+
+    @property
+    def torques(self) -> Mapping[str, float]:
+        """The torque applied to each of the two bodies (N·m)."""
+        sign = (self.relative_speed > 0) - (self.relative_speed < 0)
+        return MappingProxyType({self.bodies[0]: -self.torque * sign,
+                                 self.bodies[1]: self.torque * sign})
+
+    def to_dict(self, model: Model) -> dict[str, Any]:
+        raw = model.raw_id
+        return {"kind": self.kind, "link": self.link,
+                "between": [raw(c) for c in self.between], "node": self.node,
+                "instances": self.instances, "relative_speed": self.relative_speed,
+                "radial_load": self.radial_load, "friction_torque": self.friction_torque,
+                "drag_torque": self.drag_torque, "torque": self.torque, "loss": self.loss}
+
+
+def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
+    """Every bearing with friction/drag and every body drag of ``model``, evaluated at the
+    speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`).
+
+    The torques are those of this result's forces: the solver iterates until they agree
+    with the torques the balance was solved with.
+    """
+    states = []
+    for link in model.links:
+        if link.type == "bearing" and link.blocks:
+            carried, carrying = link.between
+            count = max(model.components[c].count for c in link.between)
+            load = _radial_load(model, result, carried) if "friction" in link.blocks else 0.0
+            states.append(_state(model, result, "bearing", link.index, (carried, carrying),
+                                 count, link.blocks.get("friction"), link.blocks.get("drag"),
+                                 load, f"bearing {model.raw_id(carried)}-"
+                                       f"{model.raw_id(carrying)}"))
+    for component in model.components.values():
+        if component.drag is not None:
+            states.append(_state(model, result, "drag", None, (component.id, model.frame),
+                                 component.count, None, component.drag, 0.0,
+                                 f"drag {component.raw_id}"))
+    return tuple(states)
+
+
+def _state(model: Model, result: Any, kind: str, link: int | None, between: tuple[str, str],
+           count: int, friction: Any, drag: Any, load: float, node: str) -> BearingState:
+    bodies = (model.body_of[between[0]], model.body_of[between[1]])
+    w_1, w_2 = (result.kinematics.body_speeds[b] for b in bodies)
+    relative = w_1 - w_2
+    if abs(relative) <= SPEED_NOISE * max(abs(w_1), abs(w_2)):
+        relative = 0.0
+    m_friction = friction.torque(load) if friction is not None else 0.0
+    m_drag = drag.torque(relative) if drag is not None else 0.0
+    torque = count * (m_friction + m_drag) if relative != 0.0 else 0.0
+    return BearingState(kind=kind, link=link, between=between, bodies=bodies, instances=count,
+                        relative_speed=float(relative) + 0.0, radial_load=float(load),
+                        friction_torque=float(m_friction), drag_torque=float(m_drag),
+                        torque=float(torque), loss=float(torque * abs(relative)), node=node)
+
+
+def tooth_forces(model: Model, result: Any, carried: str) -> list[float]:
+    """Signed tangential tooth force (N, per mesh instance) on each gear of the carried
+    member's body: the mesh's torque on the gear over its working pitch radius."""
+    forces = []
+    for mesh, gear in load_meshes(model, carried):
+        flow = result.element(mesh)
+        on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
+        torque = (on_a if gear == flow.a else on_b) * flow.force
+        count = max(model.components[c].count for c in model.links[mesh].between)
+        forces.append(float(torque) / gear_radius(model, mesh, gear) / count)
+    return forces
+
+
+def _radial_load(model: Model, result: Any, carried: str) -> float:
+    return sum(abs(f) for f in tooth_forces(model, result, carried))
+
+
+def torques_on_bodies(states: tuple[BearingState, ...]) -> dict[str, float]:
+    """The bearings' torques summed per body (N·m), zero entries left out.
+
+    >>> s = BearingState("drag", None, ("6", "0"), ("6/7", "0"), 1, -2.0, 0.0, 0.0, 0.5,
+    ...                  0.5, 1.0, "drag 6")
+    >>> torques_on_bodies((s,))
+    {'6/7': 0.5, '0': -0.5}
+    """
+    out: dict[str, float] = {}
+    for state in states:
+        for body, torque in state.torques.items():
+            if torque:
+                out[body] = out.get(body, 0.0) + torque
+    return out
+
+
+def load_regime(model: Model, result: Any) -> tuple:
+    """What must not change for the solution to stay affine in the loads: each element's
+    driver and the sign of every tooth force that loads a bearing."""
+    signs = tuple((f > 0) - (f < 0) for link in model.links
+                  if link.type == "bearing" and "friction" in link.blocks
+                  for f in tooth_forces(model, result, link.between[0]))
+    return tuple(e.driver for e in result.elements), signs
+
+
+def with_extra_torques(loads: Loads, extra: Mapping[str, float]) -> Loads:
+    """``loads`` with the known bearing torques added to the given torques, so that the
+    torque balance carries them on its right-hand side (the unknowns stay the same)."""
+    given = dict(loads.given)
+    for body, torque in extra.items():
+        given[body] = given.get(body, 0.0) + torque
+    return dataclasses.replace(loads, given=given)
+
+
+def with_bearings(model: Model, result: Any, states: tuple[BearingState, ...],
+                  extra: Mapping[str, float]) -> Any:
+    """The result of a balance solved with ``extra`` bearing torques among its loads: the
+    true external torques (without ``extra``), the input and output powers from them, the
+    bearing states, and the total loss including theirs."""
+    external = dict(result.external_torques)
+    if extra:
+        kin = result.kinematics if result.lock is None else result.lock.asked
+        true = loads_of(model, kin)
+        for body in extra:
+            if body in true.unknown:
+                continue
+            if body in true.given:
+                external[body] = true.given[body]
+            else:
+                external.pop(body, None)
+    speeds = result.kinematics.body_speeds
+
+    def fed(port) -> float:
+        body = model.body_of[port.component]
+        return external.get(body, 0.0) * speeds[body]
+
+    input_power = sum(fed(p) for p in model.inputs)
+    output_power = -sum(fed(p) for p in model.outputs)
+    return dataclasses.replace(
+        result, external_torques=MappingProxyType(external), input_power=float(input_power),
+        output_power=float(output_power) + 0.0, bearings=states,
+        total_loss=float(sum(e.loss for e in result.elements) + sum(s.loss for s in states)))
