@@ -108,8 +108,11 @@ def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
 def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     flow = result.element(friction.link)
     link = model.links[friction.link]
-    path = path_of_contact(friction.geometry)
-    radius = path.working_radius_1 / 1000.0                        # m
+    if friction.model == "cycloid":      # pin ring: constant, force at the disc's pitch circle
+        radius, h_v = friction.pitch_radius / 1000.0, friction.loss_factor
+    else:
+        radius = path_of_contact(friction.geometry).working_radius_1 / 1000.0   # m
+        h_v = mesh_loss(friction.geometry).loss_factor
     a, b = link.between
     on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
     torque_1 = (on_a if friction.gear_1 == a else on_b) * flow.force
@@ -119,6 +122,5 @@ def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     force = abs(torque_1) / radius / instances
     pitch_speed = abs(relative) * radius
     mu, eta = friction.efficiency(force, pitch_speed)
-    h_v = mesh_loss(friction.geometry).loss_factor
     return MeshFrictionState(link=friction.link, model=friction.model, tangential_force=force,
                              pitch_speed=pitch_speed, mu=mu, loss_factor=h_v, efficiency=eta)
