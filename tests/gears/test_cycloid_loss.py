@@ -37,7 +37,9 @@ def hand_sliding_limit(stage: PinRing) -> float:
     ∫_0^π λ·D du = z_c e R_p ∫ sin u du = 2 z_c e R_p;
     ∫_0^π λ du = z_c e ∫ sin u/sqrt(1 + K² − 2K cos u) du = z_c e·[(1 + K) − (1 − K)]/K = 2 z_c e
     (substitute w = 1 + K² − 2K cos u); ∫_0^π sin²u/(1 + K² − 2K cos u) du = π/2 for
-    K < 1 (Gradshteyn & Ryzhik 3.613), so ∫ λ² du = (z_c e)² π/2, and
+    K < 1 (expand 1/(1 + K² − 2K cos u) in its Poisson-kernel cosine series: only the
+    constant term 1/(1 − K²) and the cos 2u term survive against sin²u, giving
+    π/2·(1 − K²)/(1 − K²); checked by quadrature below), so ∫ λ² du = (z_c e)² π/2, and
 
         H = 4 (R_p − r_p) / (π z_c z_p e).
     """
@@ -57,6 +59,14 @@ def test_small_mu_is_linear() -> None:
     one, two = (1 - cycloid_mesh_loss(RV, PinContact(mu)).efficiency for mu in (1e-4, 2e-4))
     assert two == pytest.approx(2 * one, rel=1e-12)
     assert one == pytest.approx(1e-4 * pin_loss_factor(RV, PinContact(1.0)), rel=1e-12)
+
+
+@pytest.mark.parametrize("k", [0.3, 0.8125, 0.95])
+def test_the_integrals_of_the_hand_limit(k: float) -> None:
+    u = (np.arange(200000) + 0.5) * np.pi / 200000
+    w = 1 + k * k - 2 * k * np.cos(u)
+    assert np.mean(np.sin(u) ** 2 / w) * np.pi == pytest.approx(np.pi / 2, rel=1e-8)
+    assert np.mean(np.sin(u) / np.sqrt(w)) * np.pi == pytest.approx(2.0, rel=1e-8)
 
 
 @pytest.mark.parametrize("lobes, rel", [(39, 1e-5), (119, 1e-7), (1001, 1e-9)])
