@@ -139,6 +139,14 @@ def _mesh_loss():
     return mesh_loss(MeshGeometry(20, 40), mu=0.05)
 
 
+def _cycloid_loss():
+    from powergraph.gears.cycloid_loss import (CrankBearing, OutputPins, PinContact, PinRing,
+                                               cycloid_mesh_loss)
+
+    return cycloid_mesh_loss(PinRing(39, 64.0, 3.0, 1.3), PinContact(0.05),
+                             OutputPins(8, 40.0, 0.05), CrankBearing(0.002, 20.0))
+
+
 RESULTS = [
     ("PowerFlowResult", _power_flow, True),
     ("Wang2021Result", _wang2021, True),
@@ -158,6 +166,7 @@ RESULTS = [
     ("ToleranceResult", _tolerance, True),
     ("EfficiencyMap", _efficiency_map, True),
     ("MeshLoss", _mesh_loss, False),
+    ("CycloidLoss", _cycloid_loss, False),
 ]
 
 

@@ -7,6 +7,8 @@
 - ``links[i].cycloid`` (docs/cycloid.md): :mod:`powergraph.model.block_cycloid`
 - ``links[i].friction`` with ``links[i].geometry`` (docs/losses.md):
   :mod:`powergraph.model.block_friction`
+- ``links[i].pins`` (+ ``output_pins``, ``crank_bearing``) on a cycloid mesh
+  (docs/losses.md): :mod:`powergraph.model.block_pins`, stored as the mesh's friction law
 - top-level ``tolerances`` (PATH -> distribution, docs/tolerance.md):
   :mod:`powergraph.analyses.tolerance.spec`
 
@@ -47,7 +49,11 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
     if "friction" in raw and "efficiency" in raw:
         raise ModelError("give the mesh's efficiency or its friction, not both (the "
                          "friction law sets the efficiency)", f"{path}.efficiency")
-    if "friction" in raw:
+    if any(key in raw for key in ("pins", "output_pins", "crank_bearing")):
+        from powergraph.model.block_pins import parse_pins
+
+        blocks["friction"] = parse_pins(raw, path, pair, components)   # docs/losses.md
+    elif "friction" in raw:
         from powergraph.model.block_friction import parse_mesh_friction
 
         gears = tuple((g, components[g].teeth, components[g].internal) for g in pair)

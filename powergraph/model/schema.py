@@ -146,6 +146,9 @@ _MESH = {
     "cycloid": _ref("cycloid"),
     "friction": _ref("friction"),
     "geometry": _ref("meshGeometry"),
+    "pins": _ref("pins"),
+    "output_pins": _ref("outputPins"),
+    "crank_bearing": _ref("crankBearing"),
 }
 
 _FRICTION = {
@@ -185,6 +188,69 @@ _FRICTION = {
                                   "description": "X_L: 1 for mineral oil."}},
          "additionalProperties": False, "required": ["model", "viscosity", "roughness"]},
     ],
+}
+
+_MU = {"type": "number", "minimum": 0, "exclusiveMaximum": 1, "title": "mu"}
+_ROLLING = {"type": "boolean", "default": False, "title": "rolling"}
+
+_PINS = {
+    "type": "object", "title": "cycloid pins",
+    "description": "Friction at the pin ring of a cycloid mesh (disc of z_c lobes, internal "
+                   "ring of z_c + 1 pins): sets the mesh's basic efficiency from the "
+                   "equal-load pin forces (docs/losses.md). Replaces efficiency. radius, "
+                   "circle_radius and eccentricity may come from the mesh's cycloid block or "
+                   "the disc's cycloid_disc geometry instead.",
+    "properties": {
+        "mu": {**_MU, "description": "Friction coefficient: at the contact with the disc "
+                                     "(fixed pins) or at the pin's seat (rolling pins)."},
+        "rolling": {**_ROLLING, "description": "true: the pins roll on the disc and turn in "
+                                               "their seats (or on needle bearings)."},
+        "radius": _length("radius", "Pin radius r_p."),
+        "circle_radius": _length("circle_radius", "Radius R_p of the pin-centre circle."),
+        "eccentricity": _length("eccentricity", "Crank eccentricity e."),
+        "seat_radius": _length("seat_radius", "Rolling pins: radius on which the friction "
+                                              "acts (default: the pin radius)."),
+    },
+    "additionalProperties": False,
+    "required": ["mu"],
+}
+
+_OUTPUT_PINS = {
+    "type": "object", "title": "output pins",
+    "description": "A W output mechanism of a cycloid mesh with a pins block: pins in holes "
+                   "(pin radius + e) of the disc; its friction is folded into the mesh's "
+                   "efficiency (docs/losses.md).",
+    "properties": {
+        "count": _integer("count", "Number of output pins.", 2, 1000),
+        "circle_radius": _length("circle_radius", "Radius R_w of the output pins' circle."),
+        "mu": {**_MU, "description": "Friction coefficient of a pin in its hole (or of a "
+                                     "rolling sleeve on its pin)."},
+        "rolling": {**_ROLLING, "description": "true: rolling sleeves (needs radius and "
+                                               "seat_radius)."},
+        "radius": _length("radius", "Outer radius of a rolling sleeve."),
+        "seat_radius": _length("seat_radius", "Radius on which a rolling sleeve turns."),
+    },
+    "additionalProperties": False,
+    "required": ["count", "circle_radius", "mu"],
+}
+
+_CRANK_BEARING = {
+    "type": "object", "title": "crank bearing",
+    "description": "The disc's bearing on its eccentric, for a cycloid mesh with a pins "
+                   "block; its friction is folded into the mesh's efficiency "
+                   "(docs/losses.md).",
+    "properties": {
+        "mu": {**_MU, "description": "Bearing friction coefficient referred to the bore "
+                                     "(e.g. about 0.002 for needle roller bearings)."},
+        "bore_radius": _length("bore_radius", "Bore radius of the bearing (friction "
+                                              "radius)."),
+        "crank_circle_radius": {**_length("crank_circle_radius",
+                                          "0 for one central crank; else the radius of the "
+                                          "circle of the cranks that carry the disc (an RV "
+                                          "reducer).", non_negative=True), "default": 0},
+    },
+    "additionalProperties": False,
+    "required": ["mu", "bore_radius"],
 }
 
 _MESH_GEOMETRY = {
@@ -415,6 +481,9 @@ MODEL_SCHEMA: dict[str, Any] = {
         "bearingFriction": _BEARING_FRICTION,
         "drag": _DRAG,
         "meshGeometry": _MESH_GEOMETRY,
+        "pins": _PINS,
+        "outputPins": _OUTPUT_PINS,
+        "crankBearing": _CRANK_BEARING,
         "port": _PORT,
     },
 }

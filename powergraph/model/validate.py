@@ -172,7 +172,7 @@ def _mesh_fields(raw: Mapping, path: str, pair: tuple[str, str],
             raise ModelError("two internal gears cannot mesh", f"{path}.between")
     blocks = {}
     if any(key in raw for key in ("backlash", "backlash_arcmin", "cycloid", "friction",
-                                  "geometry")):
+                                  "geometry", "pins", "output_pins", "crank_bearing")):
         from powergraph.model.blocks import validate_mesh_blocks
 
         blocks = validate_mesh_blocks(raw, path, pair, components)

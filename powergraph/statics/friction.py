@@ -151,7 +151,11 @@ def _constant(friction: Any) -> tuple[float, float]:
 def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     flow = result.element(friction.link)
     link = model.links[friction.link]
-    radius = _path(friction.geometry).working_radius_1 / 1000.0     # m
+    if friction.model == "cycloid":      # pin ring: constant, force at the disc's pitch circle
+        radius, h_v = friction.pitch_radius / 1000.0, friction.loss_factor
+    else:
+        radius = _path(friction.geometry).working_radius_1 / 1000.0   # m
+        h_v = _loss_factor(friction.geometry)
     a, b = link.between
     on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
     torque_1 = (on_a if friction.gear_1 == a else on_b) * flow.force
@@ -164,6 +168,5 @@ def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
         mu, eta = friction.efficiency(force, pitch_speed)
     else:                                   # the same law, cached: it does not change
         mu, eta = _constant(friction)
-    h_v = _loss_factor(friction.geometry)
     return MeshFrictionState(link=friction.link, model=friction.model, tangential_force=force,
                              pitch_speed=pitch_speed, mu=mu, loss_factor=h_v, efficiency=eta)

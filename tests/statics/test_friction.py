@@ -133,3 +133,145 @@ def test_geometry_without_friction_is_refused() -> None:
     del data["links"][0]["friction"]
     with pytest.raises(ModelError, match="friction"):
         model_from_dict(data)
+
+
+# --- Cycloid stages: pins, output pins and crank bearing (docs/losses.md) -------------------
+
+def _khv(lobes: int, mesh: dict, power: str = "1 kW") -> dict:
+    """A K-H-V stage: crank H in, pins fixed, disc out through a coupling."""
+    return {"name": "K-H-V", "components": {0: {"role": "frame"}, "H": {},
+                                            "d": {"teeth": lobes, "count": 2},
+                                            "p": {"teeth": lobes + 1, "internal": True},
+                                            "out": {}},
+            "links": [{"type": "mesh", "between": ["d", "p"], "carrier": "H", **mesh},
+                      {"type": "fixed", "between": ["p", 0]},
+                      {"type": "coupling", "between": ["d", "out"]}],
+            "ports": [{"component": "H", "role": "input", "speed": "1500 rpm", "power": power},
+                      {"component": "out", "role": "output"}]}
+
+
+def khv_efficiency(lobes: int, eta_c: float) -> float:
+    """η of a K-H-V stage whose pin mesh has the basic efficiency η_c, by hand.
+
+    Crank H in (ω_H), pins fixed, disc out: Willis (ω_d − ω_H)/(0 − ω_H) = z_p/z_c gives
+    ω_d = −ω_H/N (N = z_c lobes). In the crank's frame the ring turns at −ω_H and the disc
+    at ω_d − ω_H = (N + 1)·ω_d. The output resists, so the disc receives P_v = (N + 1)·P_out
+    in the crank frame: the pins drive it, and they pass P_v/η_c; the mesh loses
+    (1 − η_c)·P_v/η_c. The losses are the same in every frame, so
+    P_in = P_out + (N + 1)(1 − η_c)/η_c·P_out = P_out·(1 + N(1 − η_c))/η_c, and
+
+        η = η_c / (1 + N (1 − η_c)).
+    """
+    return eta_c / (1 + lobes * (1 - eta_c))
+
+
+@pytest.mark.parametrize("lobes", [9, 39, 119])
+@pytest.mark.parametrize("eta_c", [0.9, 0.98, 0.998])
+def test_khv_stage_efficiency_is_the_hand_formula(lobes: int, eta_c: float) -> None:
+    result = pg.solve(model_from_dict(_khv(lobes, {"efficiency": eta_c})))
+    assert_conservation(result)
+    assert result.efficiency == pytest.approx(khv_efficiency(lobes, eta_c), rel=1e-12)
+
+
+@pytest.mark.parametrize("lobes, mu, rolling, stage, units", [
+    (39, 0.05, False, (64.0, 3.0, 1.3), False),
+    (39, 0.002, True, (64.0, 3.0, 1.3), True),
+    (9, 0.1, False, (20.0, 2.0, 1.2), False),
+])
+def test_khv_with_pins_is_the_hand_formula_with_the_friction_eta(lobes, mu, rolling, stage,
+                                                                 units) -> None:
+    from powergraph.gears.cycloid_loss import PinContact, PinRing, cycloid_mesh_loss
+
+    circle, radius, eccentricity = stage
+    eta_c = cycloid_mesh_loss(PinRing(lobes, circle, radius, eccentricity),
+                              PinContact(mu, rolling=rolling)).efficiency
+    mm = (lambda x: f"{x} mm") if units else (lambda x: x)
+    pins = {"mu": mu, "rolling": rolling, "radius": mm(radius), "circle_radius": mm(circle),
+            "eccentricity": mm(eccentricity)}
+    result = pg.solve(model_from_dict(_khv(lobes, {"pins": pins})))
+    assert_conservation(result)
+    assert result.efficiency == pytest.approx(khv_efficiency(lobes, eta_c), rel=1e-12)
+    state = result.friction[0]
+    assert (state.model, state.mu, state.efficiency) == ("cycloid", mu, eta_c)
+    # Force at the disc's pitch circle z_c·e times the crank-frame pitch speed, over the
+    # two discs: the power the disc receives, η_c times what the pins pass.
+    passed = abs(result.element(0).carrier_frame_power)
+    assert 2 * state.tangential_force * state.pitch_speed == pytest.approx(eta_c * passed,
+                                                                            rel=1e-9)
+
+
+def test_khv_with_output_pins_and_bearing_multiplies_their_efficiencies() -> None:
+    from powergraph.gears.cycloid_loss import (CrankBearing, OutputPins, PinContact, PinRing,
+                                               cycloid_mesh_loss)
+
+    mesh = {"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3},
+            "output_pins": {"count": 8, "circle_radius": "40 mm", "mu": 0.05},
+            "crank_bearing": {"mu": 0.002, "bore_radius": 20}}
+    loss = cycloid_mesh_loss(PinRing(39, 64.0, 3.0, 1.3), PinContact(0.05),
+                             OutputPins(8, 40.0, 0.05), CrankBearing(0.002, 20.0))
+    eta_c = loss.pin_efficiency * loss.output_efficiency * loss.bearing_efficiency
+    result = pg.solve(model_from_dict(_khv(39, mesh)))
+    assert_conservation(result)
+    assert result.efficiency == pytest.approx(khv_efficiency(39, eta_c), rel=1e-12)
+
+
+def test_pins_geometry_from_the_cycloid_block_or_the_disc_geometry() -> None:
+    # cycloid: m = 3.2, x = 0.1875, rc = 0.9375 -> R_p = 64, e = 1.3, r_p = 3 (docs/cycloid.md)
+    by_pins = model_from_dict(_khv(39, {"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64,
+                                                 "eccentricity": 1.3}}))
+    by_cycloid = model_from_dict(_khv(39, {
+        "pins": {"mu": 0.05},
+        "cycloid": {"module": 3.2, "profile_error": 0, "shift": 0.1875, "rc": 0.9375}}))
+    data = _khv(39, {"pins": {"mu": 0.05}})
+    data["components"]["d"]["geometry"] = {
+        "shape": "cycloid_disc", "width": 10, "pin_circle_radius": 64, "pin_radius": 3,
+        "eccentricity": 1.3, "crank_hole_radius": 17, "crank_holes": 2, "pillar_radius": 9,
+        "pillar_holes": 2, "center_bore_radius": 15}
+    by_disc = model_from_dict(data)
+    etas = [m.links[0].efficiency for m in (by_pins, by_cycloid, by_disc)]
+    assert etas[1] == pytest.approx(etas[0], rel=1e-12)
+    assert etas[2] == pytest.approx(etas[0], rel=1e-12)
+
+
+@pytest.mark.parametrize("mesh, path, fragment", [
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64}}, "links[0].pins",
+     "eccentricity"),
+    ({"pins": {"mu": 1.2, "radius": 3, "circle_radius": 64, "eccentricity": 1.3}},
+     "links[0].pins.mu", r"\[0, 1\)"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3,
+               "colour": "red"}}, "links[0].pins.colour", "unknown field"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.7}},
+     "links[0].pins", "looped"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3},
+      "efficiency": 0.99}, "links[0].efficiency", "not both"),
+    ({"crank_bearing": {"mu": 0.002, "bore_radius": 13}}, "links[0].crank_bearing", "pins"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3,
+               "seat_radius": 2}}, "links[0].pins.seat_radius", "rolling"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3},
+      "output_pins": {"count": 8, "circle_radius": 40, "mu": 0.05},
+      "crank_bearing": {"mu": 0.002, "bore_radius": 13, "crank_circle_radius": 36}},
+     "links[0].output_pins", "not both"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3},
+      "output_pins": {"count": 8, "circle_radius": 40, "mu": 0.01, "rolling": True}},
+     "links[0].output_pins.rolling", "seat_radius"),
+    ({"pins": {"mu": 0.05, "radius": 3, "circle_radius": 64, "eccentricity": 1.3},
+      "output_pins": {"count": 1, "circle_radius": 40, "mu": 0.01}},
+     "links[0].output_pins.count", ">= 2"),
+    ({"pins": {"mu": 0.05, "eccentricity": 1.2},
+      "cycloid": {"module": 3.2, "profile_error": 0, "shift": 0.1875, "rc": 0.9375}},
+     "links[0].pins.eccentricity", "disagrees"),
+])
+def test_bad_pin_blocks_name_the_place(mesh, path, fragment) -> None:
+    with pytest.raises(ModelError, match=fragment) as info:
+        model_from_dict(_khv(39, mesh))
+    assert str(info.value).startswith(path)
+
+
+def test_pins_on_a_pair_that_is_not_a_cycloid_stage_are_refused() -> None:
+    data = _pair({"mu": 0.05}, {"module": 2})
+    data["links"][0] = {"type": "mesh", "between": [1, 2],
+                        "pins": {"mu": 0.05, "radius": 1, "circle_radius": 20,
+                                 "eccentricity": 0.5}}
+    with pytest.raises(ModelError, match="internal") as info:
+        model_from_dict(data)
+    assert str(info.value).startswith("links[0].pins")

@@ -188,3 +188,40 @@ ports: [{component: 1, role: input}, {component: 2, role: output}]
     assert result.speeds["1"] == 1.0 and result.input_power == pytest.approx(1.0, rel=1e-15)
     assert result.output_power == pytest.approx(0.9, rel=1e-12)
     assert math.isclose(result.ratio, -2.0, rel_tol=1e-12)
+
+
+def test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage() -> None:
+    """models/rv40e_friction.yaml against a hand derivation (docs/losses.md).
+
+    Speeds: the output body 6/7 turns at ω, the crank 2/3 at −N ω (N = z4 = 39, the
+    cycloid Willis row (ω − ω3)/(0 − ω3) = z5/z4), the centre gear at (1 + a(N + 1)) ω with
+    a = z2/z1 = 3. Torques (the mesh's on each gear; driver 1 in the first stage, the pins
+    5 in the cycloid mesh, as the solver reports): first stage T2 = 3 η1 T1 with
+    T1 = −T_in; cycloid mesh T5 = −(z5/z4) T4/η_c. The crank body balances T2 against the
+    cycloid mesh's reaction T4 + T5, so T4 = 3 η1 T_in / (z5/(z4 η_c) − 1)
+    = a η1 T_in · N η_K with η_K = η_c/(1 + N(1 − η_c)), the K-H-V stage efficiency.
+    The output body (disc through the coupling, planet frame) gives
+    P_out = (T4 + (1 + a η1) T_in) ω, P_in = (1 + a(N + 1)) T_in ω, so
+
+        η = (a N η1 η_K + 1 + a η1) / (1 + a (N + 1)).
+
+    η1 is the first stage's load-dependent ISO/TR 14179-2 efficiency at the solution; η_c
+    the cycloid mesh's, from the pin ring and crank bearings of the file (computed here).
+    """
+    from powergraph.gears.cycloid_loss import (CrankBearing, PinContact, PinRing,
+                                               cycloid_mesh_loss)
+
+    result = solve(load("rv40e_friction.yaml"))
+    eta_1 = result.friction[0].efficiency
+    eta_c = cycloid_mesh_loss(PinRing(39, 64.0, 3.0, 1.3), PinContact(0.05, rolling=True),
+                              bearing=CrankBearing(0.0025, 13.0, 36.0)).efficiency
+    a, n = 36 / 12, 39
+    eta_k = eta_c / (1 + n * (1 - eta_c))
+    assert result.efficiency == pytest.approx((a * n * eta_1 * eta_k + 1 + a * eta_1)
+                                              / (1 + a * (n + 1)), rel=1e-9)
+    # The catalogue's rated point: 412 N·m at 15 rpm output.
+    assert result.kinematics.body_speeds[result.model.body_of["6"]] * 60 / (2 * math.pi) \
+        == pytest.approx(15.0, rel=1e-12)
+    assert result.output_power == pytest.approx(412 * 15 * 2 * math.pi / 60, rel=1e-12)
+    # A physically plausible RV efficiency (catalogue curves: 80-90 % at rated torque).
+    assert 0.80 < result.efficiency < 0.95

@@ -21,6 +21,7 @@ from scipy.optimize.elementwise import find_root
 
 from powergraph.analyses.cycloid.geometry import CycloidGeometry, contact_locus
 from powergraph.errors import SolveError, UsageError
+from powergraph.gears.cycloid import lever_arm as gear_lever_arm
 
 #: Pins (largest ideal lever arm first) solved exactly at each crank angle. The pin that
 #: stops the disc first has δ_k ≈ d/λ_k, i.e. one of the largest lever arms λ_k.
@@ -35,7 +36,8 @@ def lever_arm(geometry: CycloidGeometry, theta, pins) -> np.ndarray:
 
     Positive on the driving flank. To first order in ``d`` the disc turns by ``d/λ_k``
     before pin ``k`` stops it. With ``u = z1·t`` at the pin's trochoid parameter ``t``,
-    ``−Im(conj(n)·T) = −z1·R_p·e·sin u / |R_p − z2·e·exp(iu)|`` (closed form).
+    ``−Im(conj(n)·T) = −z1·R_p·e·sin u / |R_p − z2·e·exp(iu)|`` (closed form:
+    :func:`powergraph.gears.cycloid.lever_arm`).
 
     Examples
     --------
@@ -45,9 +47,7 @@ def lever_arm(geometry: CycloidGeometry, theta, pins) -> np.ndarray:
     True
     """
     u = geometry.teeth * _ideal_parameter(geometry, theta, pins)
-    radius, e, z2 = geometry.pin_circle_radius, geometry.eccentricity, geometry.pins
-    return -geometry.teeth * radius * e * np.sin(u) / np.sqrt(
-        radius ** 2 + (z2 * e) ** 2 - 2.0 * radius * z2 * e * np.cos(u))
+    return gear_lever_arm(geometry.teeth, geometry.pin_circle_radius, geometry.eccentricity, u)
 
 
 def pin_contact(geometry: CycloidGeometry, profile_error: float, theta, pins):

@@ -25,6 +25,8 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from powergraph.errors import UsageError
+from powergraph.gears.cycloid import smallest_convex_radius as _smallest
+from powergraph.gears.cycloid import trochoid as _trochoid
 
 #: Samples of one tooth used to find the trochoid's largest curvature (undercut check).
 _CURVATURE_SAMPLES = 2001
@@ -145,17 +147,16 @@ def _check_pins_fit(geometry: CycloidGeometry, profile_error: float) -> None:
 def smallest_convex_radius(geometry: CycloidGeometry) -> float:
     """Smallest radius of curvature of the convex parts of the pin-centre trochoid (mm).
 
-    An inner equidistant at a distance ≥ this value is undercut (swallow-tails).
+    An inner equidistant at a distance ≥ this value is undercut (swallow-tails). The
+    formula is :func:`powergraph.gears.cycloid.smallest_convex_radius`.
 
     Examples
     --------
     >>> round(smallest_convex_radius(cycloid_geometry(1, 9)), 3)
     1.526
     """
-    t = np.linspace(0.0, 2.0 * np.pi / geometry.teeth, _CURVATURE_SAMPLES)
-    _, d1, d2 = trochoid(geometry, t)
-    curvature = np.imag(np.conj(d1) * d2) / np.abs(d1) ** 3
-    return float(1.0 / curvature.max())
+    return _smallest(geometry.pin_circle_radius, geometry.eccentricity, geometry.teeth,
+                     _CURVATURE_SAMPLES)
 
 
 def trochoid(geometry: CycloidGeometry, t: np.ndarray):
@@ -163,6 +164,7 @@ def trochoid(geometry: CycloidGeometry, t: np.ndarray):
 
     A pin ``k`` (at angle ``2πk/z2``) of the ideal drive sits at ``T(2πk/z2 + θ/z1)`` when the
     crank is at ``θ``. ``T`` runs counter-clockwise, so its outward normal is ``−i·T'/|T'|``.
+    The formula is :func:`powergraph.gears.cycloid.trochoid`.
 
     Examples
     --------
@@ -170,10 +172,7 @@ def trochoid(geometry: CycloidGeometry, t: np.ndarray):
     >>> float(T[0].real)          # R_p − e on the line of centres
     4.65
     """
-    z2, radius, e = geometry.pins, geometry.pin_circle_radius, geometry.eccentricity
-    ring = radius * np.exp(1j * t)
-    crank = e * np.exp(1j * z2 * t)
-    return ring - crank, 1j * (ring - z2 * crank), -(ring - z2 * z2 * crank)
+    return _trochoid(geometry.pin_circle_radius, geometry.eccentricity, geometry.pins, t)
 
 
 def contact_locus(geometry: CycloidGeometry, profile_error: float, t: np.ndarray):
