@@ -423,7 +423,7 @@ def test_grid_csv_dict_and_curves() -> None:
 
 
 def test_progress_bar_unless_quiet(monkeypatch, capsys) -> None:
-    from powergraph.analyses.sweep import compiled
+    from powergraph.analyses.sweep import compile as compiled
 
     monkeypatch.setattr(compiled, "PROGRESS_DELAY", 0.0)
     values = {"links.1.efficiency": np.linspace(0.9, 1.0, 3000)}

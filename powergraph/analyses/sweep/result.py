@@ -7,9 +7,10 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from powergraph.analyses.sweep.engine import STATUS
-
-#: Columns after the PATHs in the CSV (SPEC §2, issue 9); ``extra=True`` adds the rest.
+#: Status codes of a variant (``SweepResult.status``), by value.
+STATUS = ("ok", "cycle", "unsettled", "speeds", "loads")
+OK, CYCLE, UNSETTLED, SPEEDS, LOADS = range(5)
+#: Columns after the PATHs in the CSV; ``extra=True`` adds the rest.
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
                  "status")
@@ -44,7 +45,7 @@ class SweepResult:
         The variant was solved: its directions settled and its speeds and loads are
         determined. Where False, ``status`` says why and the powers are NaN.
     status : ndarray of int8
-        Index into :data:`~powergraph.analyses.sweep.engine.STATUS`: ``ok``, ``cycle``
+        Index into :data:`~powergraph.analyses.sweep.STATUS`: ``ok``, ``cycle``
         (the directions cycle: no consistent pattern), ``unsettled``, ``speeds`` (Willis
         rows singular), ``loads`` (loads not determined).
     passes : ndarray
