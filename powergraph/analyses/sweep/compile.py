@@ -14,16 +14,16 @@ direction change stays fast.
 from __future__ import annotations
 
 import sys
+from contextlib import contextmanager
 from dataclasses import dataclass
-from types import MappingProxyType
-from typing import Any, Mapping, NamedTuple, Sequence
+from typing import Any, Callable, Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
 from powergraph.analyses.sweep import backends
 from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
-from powergraph.analyses.sweep.paths import Parameter, as_array, check_values, parse_paths
-from powergraph.analyses.sweep.result import OK, SweepResult
+from powergraph.analyses.sweep.paths import Parameter, broadcast_values, parse_paths
+from powergraph.analyses.sweep.result import SweepResult
 from powergraph.errors import UsageError
 from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
@@ -187,13 +187,13 @@ class CompiledSweep:
         ModelError
             A value out of range (named by its PATH).
         """
-        arrays, shape = self._arrays(values)
+        arrays, shape = broadcast_values(self.parameters, values)
         n = int(np.prod(shape, dtype=np.int64))
         flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
                 for path, a in arrays.items()}
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
-        with _progress(n, step, quiet) as bar:
+        with _progress(n, step, quiet) as update:
             for start in range(0, n, step):
                 stop = min(n, start + step)
                 chunk = self._chunk(flat, start, stop)
@@ -203,8 +203,9 @@ class CompiledSweep:
                 if learned is not None:
                     self._add_closed_form(*learned)
                 self._closed_forms.sort(key=lambda form: -form.hits)
-                bar.update(stop - start)
-        return self._result(outputs, arrays, shape)
+                update(stop - start)
+        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
+                              self.backend.name)
 
     evaluate = __call__
 
@@ -223,27 +224,6 @@ class CompiledSweep:
     def _add_closed_form(self, start: tuple[int, ...], codes: tuple[int, ...]) -> None:
         if self._learning and (start, codes) not in self.patterns:
             self._closed_forms.append(self.backend.closed_form(self._moving, codes, start))
-
-    # --- values -------------------------------------------------------------------------
-    def _arrays(self, values: Mapping[str, Any]) -> tuple[dict, tuple[int, ...]]:
-        if not isinstance(values, Mapping):
-            raise UsageError("sweep values must be a mapping PATH -> array")
-        missing = [p for p in self.paths if p not in values]
-        unknown = [p for p in values if p not in self.paths]
-        if missing or unknown:
-            raise UsageError("sweep values must give exactly the compiled PATHs "
-                             f"({', '.join(self.paths)})"
-                             + (f"; missing {', '.join(missing)}" if missing else "")
-                             + (f"; not compiled: {', '.join(map(str, unknown))}"
-                                if unknown else ""))
-        arrays = {p.path: check_values(p, as_array(p, values[p.path]))
-                  for p in self.parameters}
-        try:
-            shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
-        except ValueError:
-            shapes = ", ".join(f"{p} {a.shape}" for p, a in arrays.items())
-            raise UsageError(f"the swept arrays do not broadcast together: {shapes}") from None
-        return arrays, shape
 
     def _chunk(self, flat: dict, start: int, stop: int) -> Chunk:
         base = self._base
@@ -266,26 +246,7 @@ class CompiledSweep:
         for k, gear_a, gear_b in self.layout.teeth_ratios:
             magnitudes[k] = teeth[gear_b] / teeth[gear_a]
         return Chunk(n=stop - start, magnitudes=magnitudes, efficiencies=etas,
-                            speeds=speeds, loads=loads)
-
-    def _result(self, outputs: Outputs, arrays: dict, shape) -> SweepResult:
-        shaped = lambda a: a.reshape(shape)  # noqa: E731
-        links = self.layout.links
-        return SweepResult(
-            name=self.model.name,
-            parameters=MappingProxyType({p: np.broadcast_to(a, shape)
-                                         for p, a in arrays.items()}),
-            ratio=shaped(outputs.ratio), efficiency=shaped(outputs.efficiency),
-            input_power=shaped(outputs.input_power),
-            output_power=shaped(outputs.output_power),
-            total_loss=shaped(outputs.total_loss),
-            losses=MappingProxyType({link: shaped(outputs.losses[k])
-                                     for k, link in enumerate(links)}),
-            drivers=MappingProxyType({link: shaped(outputs.codes[k])
-                                      for k, link in enumerate(links)}),
-            self_locking=shaped(outputs.self_locking),
-            converged=shaped(outputs.status == OK), status=shaped(outputs.status),
-            passes=shaped(outputs.passes), backend=self.backend.name)
+                     speeds=speeds, loads=loads)
 
 
 def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
@@ -296,17 +257,13 @@ def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
     loads that are not determined raise the single solver's own ModelError.
     """
     probe = _probe(model, params)
-    kin = solve_speeds(probe)
     elements = elements_of(probe)
-    loads = loads_of(probe, kin)
+    loads = loads_of(probe, solve_speeds(probe))
     eq = solve_equilibrium(probe, elements, loads, [1.0] * len(elements))
     column = {body.id: j for j, body in enumerate(model.bodies)}
-    speed_ports = _speed_ports(probe, column)
-    load_list = _loads(probe, column)
-    inputs, outputs = probe.inputs, probe.outputs
-    ratio_bodies = (column[probe.body_of[inputs[0].component]],
-                    column[probe.body_of[outputs[0].component]]) \
-        if len(inputs) == 1 and len(outputs) == 1 else None
+    body = lambda component: column[probe.body_of[component]]  # noqa: E731
+    inputs = tuple(body(p.component) for p in probe.inputs)
+    outputs = tuple(body(p.component) for p in probe.outputs)
     teeth, signs = _teeth_ratios(model, params, elements)
     return Layout(
         n_bodies=len(model.bodies), links=tuple(e.link for e in elements),
@@ -314,13 +271,11 @@ def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
         body_a=tuple(column[e.body_a] for e in elements),
         body_b=tuple(column[e.body_b] for e in elements),
         body_c=tuple(column[e.body_c] for e in elements),
-        frame=column[model.frame_body], teeth_ratios=teeth,
-        signs=tuple(signs),
-        speed_ports=speed_ports, loads=load_list,
-        unknown=tuple(column[b] for b in loads.unknown),
-        inputs=tuple(column[probe.body_of[p.component]] for p in inputs),
-        outputs=tuple(column[probe.body_of[p.component]] for p in outputs),
-        ratio_bodies=ratio_bodies, determinate=not eq.indeterminate)
+        frame=column[model.frame_body], teeth_ratios=teeth, signs=signs,
+        speed_ports=_speed_ports(probe, body), loads=_loads(probe, body),
+        unknown=tuple(column[b] for b in loads.unknown), inputs=inputs, outputs=outputs,
+        ratio_bodies=(inputs[0], outputs[0]) if len(inputs) == len(outputs) == 1 else None,
+        determinate=not eq.indeterminate)
 
 
 def _probe(model: Model, params: tuple[Parameter, ...]) -> Model:
@@ -332,20 +287,19 @@ def _probe(model: Model, params: tuple[Parameter, ...]) -> Model:
     return model
 
 
-def _speed_ports(probe: Model, column: dict) -> tuple[tuple[int, int | None], ...]:
-    given = [(column[probe.body_of[p.component]], p.index) for p in probe.ports
-             if p.speed is not None]
+def _speed_ports(probe: Model, body: Callable) -> tuple[tuple[int, int | None], ...]:
+    given = [(body(p.component), p.index) for p in probe.ports if p.speed is not None]
     if not given and degrees_of_freedom(probe) == 1:
-        given = [(column[probe.body_of[probe.inputs[0].component]], None)]
+        given = [(body(probe.inputs[0].component), None)]
     return tuple(given)
 
 
-def _loads(probe: Model, column: dict) -> tuple[Load, ...]:
+def _loads(probe: Model, body: Callable) -> tuple[Load, ...]:
     loaded = [p for p in probe.ports if p.power is not None or p.torque is not None]
     if not loaded:   # the first input feeds 1 W
         first = probe.inputs[0]
-        return (Load(column[probe.body_of[first.component]], first.index, "power", "input"),)
-    return tuple(Load(column[probe.body_of[p.component]], p.index,
+        return (Load(body(first.component), first.index, "power", "input"),)
+    return tuple(Load(body(p.component), p.index,
                       "torque" if p.torque is not None else "power", p.role)
                  for p in loaded)
 
@@ -409,27 +363,18 @@ def _load_value(port, kind: str) -> float:
     return 1.0 if value is None else value
 
 
-class _progress:
-    """A tqdm bar on stderr for long runs (delayed, so short runs print nothing)."""
+@contextmanager
+def _progress(n: int, chunk_size: int, quiet: bool) -> Iterator[Callable[[int], Any]]:
+    """``update(count)`` of a tqdm bar on stderr for long runs (delayed, so short runs
+    print nothing)."""
+    if quiet or n <= chunk_size:
+        yield lambda count: None
+        return
+    from tqdm import tqdm
 
-    def __init__(self, n: int, chunk_size: int, quiet: bool) -> None:
-        self.bar = None
-        if not quiet and n > chunk_size:
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=n, unit="variant", unit_scale=True, file=sys.stderr,
-                            delay=PROGRESS_DELAY, desc="sweep", leave=False)
-
-    def __enter__(self) -> "_progress":
-        return self
-
-    def update(self, count: int) -> None:
-        if self.bar is not None:
-            self.bar.update(count)
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.close()
+    with tqdm(total=n, unit="variant", unit_scale=True, file=sys.stderr,
+              delay=PROGRESS_DELAY, desc="sweep", leave=False) as bar:
+        yield bar.update
 
 
 def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> CompiledSweep:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -229,6 +229,37 @@ def check_values(param: Parameter, array: np.ndarray) -> np.ndarray:
                          + (f" ({count} of {array.size} values are out of range)"
                             if count > 1 else ""), param.path)
     return array
+
+
+def broadcast_values(params: Sequence[Parameter],
+                     values: Mapping[str, Any]) -> tuple[dict, tuple[int, ...]]:
+    """The checked arrays of exactly the PATHs of ``params``, and their broadcast shape.
+
+    Raises
+    ------
+    UsageError
+        Not a mapping, missing or unknown PATHs, arrays that do not broadcast.
+    ModelError
+        A value out of range (named by its PATH).
+    """
+    paths = [p.path for p in params]
+    if not isinstance(values, Mapping):
+        raise UsageError("sweep values must be a mapping PATH -> array")
+    missing = [p for p in paths if p not in values]
+    unknown = [p for p in values if p not in paths]
+    if missing or unknown:
+        raise UsageError("sweep values must give exactly the compiled PATHs "
+                         f"({', '.join(paths)})"
+                         + (f"; missing {', '.join(missing)}" if missing else "")
+                         + (f"; not compiled: {', '.join(map(str, unknown))}"
+                            if unknown else ""))
+    arrays = {p.path: check_values(p, as_array(p, values[p.path])) for p in params}
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{p} {a.shape}" for p, a in arrays.items())
+        raise UsageError(f"the swept arrays do not broadcast together: {shapes}") from None
+    return arrays, shape
 
 
 def _bad_values(kind: str, array: np.ndarray) -> np.ndarray:

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
@@ -68,6 +69,24 @@ class SweepResult:
     status: np.ndarray
     passes: np.ndarray
     backend: str
+
+    @classmethod
+    def of(cls, name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
+           outputs: Any, links: tuple[int, ...], backend: str) -> "SweepResult":
+        """The result of a run from its swept ``arrays`` and its flat ``outputs``
+        (:class:`~powergraph.analyses.sweep.evaluate.Outputs`), shaped to ``shape``."""
+        shaped = lambda a: a.reshape(shape)  # noqa: E731
+        by_link = lambda rows: MappingProxyType(  # noqa: E731
+            {link: shaped(rows[k]) for k, link in enumerate(links)})
+        return cls(name=name, parameters=MappingProxyType(
+                       {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
+                   ratio=shaped(outputs.ratio), efficiency=shaped(outputs.efficiency),
+                   input_power=shaped(outputs.input_power),
+                   output_power=shaped(outputs.output_power),
+                   total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
+                   drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
+                   converged=shaped(outputs.status == OK), status=shaped(outputs.status),
+                   passes=shaped(outputs.passes), backend=backend)
 
     @property
     def shape(self) -> tuple[int, ...]:
