@@ -1,6 +1,8 @@
-"""Closed-form ratio and efficiency (issue 10).
+"""Closed-form ratio and efficiency (``powergraph formula``, docs/formula.md).
 
-Expected forms come from REFERENCE.md §C (2K-H, K-H-V), REFERENCE §A-B (RV-40E), and a
+Expected forms come from the textbook closed forms of the 2K-H arrangements and of the
+K-H-V stage (Willis' relation with the basic efficiency in the carrier's frame, written
+beside each test), the RV-40E's hand derivation (benchmarks/sweep_rv.py), and a
 hand derivation written below (Wolfrom) -- never from the code's output. On trains the
 formulas were not written for, they are checked against the numeric solver
 (``powergraph.solve``) at the model's values and at random points inside their stated
@@ -41,7 +43,7 @@ def solved(model):
     return result
 
 
-# --- REFERENCE §C: 2K-H, k = z_r/z_s, eta0 = eta(s-p)*eta(p-r) ------------------------------
+# --- 2K-H closed forms, k = z_r/z_s, eta0 = eta(s-p)*eta(p-r) -------------------------------
 
 TWO_K_H = [
     ("planetary_2kh_sun_to_carrier.yaml", lambda k, e: 1 + k, lambda k, e: (1 + e * k) / (1 + k)),
@@ -72,7 +74,7 @@ def test_2kh_closed_forms(name, ratio, efficiency) -> None:
 
 
 def test_khv_closed_form() -> None:
-    """REFERENCE §C: ratio -N, efficiency eta0/(N + 1 - N eta0), N = z_p/(z_r - z_p)."""
+    """K-H-V closed form: ratio -N, efficiency eta0/(N + 1 - N eta0), N = z_p/(z_r - z_p)."""
     f = derive_formulas(load_model(MODELS / "khv_involute.yaml"))
     z_p, z_r, eta0 = f.symbols["z_p"], f.symbols["z_r"], f.symbols["eta_0"]
     n = z_p / (z_r - z_p)
@@ -82,7 +84,7 @@ def test_khv_closed_form() -> None:
     assert f.evaluate()["efficiency"] == pytest.approx(0.99 / (9 - 8 * 0.99), rel=1e-12)
 
 
-# --- REFERENCE §A-B: RV-40E --------------------------------------------------------------------
+# --- RV-40E (Wang 2021, Table 1) ---------------------------------------------------------------
 
 def test_rv_ratio_is_one_plus_z2_z5_over_z1() -> None:
     model = load_model(MODELS / "rv40e.yaml")
@@ -97,8 +99,10 @@ def test_rv_ratio_is_one_plus_z2_z5_over_z1() -> None:
     assert one_tooth.evaluate()["ratio"] == pytest.approx(121.0, rel=1e-12)
 
 
-def test_rv_efficiency_reference_b() -> None:
-    """REFERENCE §B: 0.287376 (0.94/0.94), 0.873043 (eta2 = 0.998), back-driven 0.867490."""
+def test_rv_efficiency_of_the_hand_closed_form() -> None:
+    """eta = [1 + (z2/z1) eta1 z5/(z5 - z4 eta2)]/i (benchmarks/sweep_rv.py): 0.287376
+    (0.94/0.94), 0.873043 (eta2 = 0.998); back-driven at eta2 = 0.998, 0.867490 (the
+    86.75 % of the README's RV table), equal to the single solve."""
     model = load_model(MODELS / "rv40e.yaml")
     f = derive_formulas(model)
     assert f.evaluate()["efficiency"] == pytest.approx(0.287376, abs=5e-7)
@@ -281,7 +285,7 @@ def test_given_ratio_and_lossy_coupling_symbols() -> None:
         "i_0": "ratio", "eta_0": "efficiency", "z_g": "teeth", "z_R": "teeth",
         "eta_1": "efficiency", "eta_3": "efficiency"}
     # Hand derivation: bevel stage i_0 with eta_0 (b1 drives); K-H-V stage of ratio -N,
-    # N = z_g/(z_R - z_g), efficiency eta_1/(N + 1 - N eta_1) (REFERENCE §C); the lossy
+    # N = z_g/(z_R - z_g), efficiency eta_1/(N + 1 - N eta_1) (K-H-V closed form); the lossy
     # coupling passes eta_3 of the power. Stages in series multiply.
     s = f.symbols
     n = s["z_g"] / (s["z_R"] - s["z_g"])

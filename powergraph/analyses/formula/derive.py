@@ -61,7 +61,7 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     _check_solved(numeric)
     elements = elements_of(model)
     table = build_symbols(model, elements, relations)
-    values = {table.symbols[n]: i.value for n, i in table.info.items()}
+    values = {table.symbols[n]: v for n, v in table.values.items()}
     input_body = model.body_of[model.inputs[0].component]
     output_body = model.body_of[model.outputs[0].component]
     codes = {flow.link: _code(flow.driver, flow.a, flow.b) for flow in numeric.elements}

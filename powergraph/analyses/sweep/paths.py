@@ -111,11 +111,17 @@ def _index(text: str, size: int, what: str, path: str) -> int:
     return index
 
 
-def _link_path(model: Model, path: str, rest: str) -> Parameter:
+def _where_field(rest: str, fields: tuple[str, ...], what: str, path: str) -> tuple[str, str]:
+    """``<where>.<field>`` of a link or port PATH, the field one that can be swept."""
     where, _, field = rest.partition(".")
-    if field not in LINK_FIELDS:
-        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a link's sweepable "
-                         f"values are {', '.join(LINK_FIELDS)})", path)
+    if field not in fields:
+        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a {what}'s sweepable "
+                         f"values are {', '.join(fields)})", path)
+    return where, field
+
+
+def _link_path(model: Model, path: str, rest: str) -> Parameter:
+    where, field = _where_field(rest, LINK_FIELDS, "link", path)
     if where == "*":
         if field != "efficiency":
             raise UsageError(f"sweep PATH {path!r}: only links.*.efficiency addresses every "
@@ -135,10 +141,7 @@ def _link_path(model: Model, path: str, rest: str) -> Parameter:
 
 
 def _port_path(model: Model, path: str, rest: str) -> Parameter:
-    where, _, field = rest.partition(".")
-    if field not in PORT_FIELDS:
-        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a port's sweepable "
-                         f"values are {', '.join(PORT_FIELDS)})", path)
+    where, field = _where_field(rest, PORT_FIELDS, "port", path)
     port = model.ports[_index(where, len(model.ports), "port", path)]
     other = {"power": "torque", "torque": "power"}.get(field)
     if other and getattr(port, other) is not None:
