@@ -49,11 +49,11 @@ def applies(layout: "Layout") -> bool:
             and 0 < layout.n_elements <= MAX_SYMBOLIC)
 
 
-def driver_codes(products, tolerance) -> np.ndarray:
+def driver_codes(products, tolerance, out: np.ndarray | None = None) -> np.ndarray:
     """+1 where gear a feeds power ``-λ (w_a - w_c)`` in (``product = λ (w_a - w_c)``
     below ``-tolerance``), -1 where it takes it out, 0 where (almost) nothing passes."""
-    return np.asarray(products < -tolerance).view(np.int8) \
-        - np.asarray(products > tolerance).view(np.int8)
+    return np.subtract(np.asarray(products < -tolerance).view(np.int8),
+                       np.asarray(products > tolerance).view(np.int8), out=out)
 
 
 class SymbolicBackend:
@@ -214,21 +214,29 @@ class ClosedForm:
         np.divide(out.output_power, out.input_power, out=out.efficiency)
         if not np.all(input_power):
             out.efficiency[out.input_power == 0] = np.nan
-        out.total_loss[:] = 0.0
-        for loss in losses:
-            out.total_loss += loss
+        _sum(losses, out.total_loss)
         moving = dict(zip(self.moving, range(len(self.moving))))
         for k, product in enumerate(products):
             j = moving.get(k)
             if j is None:
                 out.losses[k] = 0.0
-                out.codes[k] = driver_codes(product, tolerance)
+                driver_codes(product, tolerance, out=out.codes[k])
             else:
                 out.losses[k] = losses[j]
                 out.codes[k] = self.codes[j]
         out.status[:] = OK
         out.passes[:] = self.passes
         np.less_equal(out.efficiency, 0.0, out=out.self_locking)
+
+
+def _sum(terms: list, out: np.ndarray) -> None:
+    """``out[:] = sum(terms)`` in place."""
+    if len(terms) < 2:
+        out[:] = terms[0] if terms else 0.0
+        return
+    np.add(terms[0], terms[1], out=out)
+    for term in terms[2:]:
+        out += term
 
 
 def _factors(sp, n: int, moving, codes, etas) -> list:

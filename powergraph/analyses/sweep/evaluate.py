@@ -112,6 +112,9 @@ def evaluate_chunk(layout: "Layout", backend, chunk: Chunk, out: Outputs,
             valid = form.evaluate(part, views)
             if valid is False:
                 continue
+            if valid is True and whole:
+                form.hits += chunk.n
+                return None
             taken = np.ones(rest.size, bool) if valid is True else valid
             form.hits += int(np.count_nonzero(taken))
             if not whole:
@@ -351,7 +354,7 @@ def _losses_and_codes(layout: "Layout", state: _State, out: Outputs) -> None:
             out.codes[k] = state.codes[j]
         else:
             product = state.forces[k] * state.rel[k]
-            out.codes[k] = driver_codes(product, state.tolerance)
+            driver_codes(product, state.tolerance, out=out.codes[k])
         if j is None:
             out.losses[k] = 0.0
             continue
