@@ -103,31 +103,31 @@ def evaluate_chunk(layout: "Layout", backend, chunk: Chunk, out: Outputs,
     pattern ``(ideal codes, settled codes)`` of the ``moving`` elements that the general
     iteration settled most variants on, when worth a closed form (``moving`` None: never).
     """
-    rest = np.arange(chunk.n)
+    rest = None    # the variants no closed form took (None: all of them)
     with np.errstate(all="ignore"):
         for form in closed_forms:
-            whole = rest.size == chunk.n
-            part = chunk if whole else chunk.take(rest)
-            views = out if whole else Outputs.empty(rest.size, layout.n_elements)
+            part = chunk if rest is None else chunk.take(rest)
+            views = out if rest is None else Outputs.empty(part.n, layout.n_elements)
             valid = form.evaluate(part, views)
             if valid is False:
                 continue
-            if valid is True and whole:
+            if valid is True and rest is None:
                 form.hits += chunk.n
                 return None
-            taken = np.ones(rest.size, bool) if valid is True else valid
+            taken = np.ones(part.n, bool) if valid is True else valid
             form.hits += int(np.count_nonzero(taken))
-            if not whole:
+            if rest is None:
+                rest = np.flatnonzero(~taken)
+            else:
                 out.put(rest[taken], views, taken)
-            rest = rest[~taken]
+                rest = rest[~taken]
             if rest.size == 0:
                 return None
-    whole = rest.size == chunk.n
-    views = out if whole else Outputs.empty(rest.size, layout.n_elements)
+    views = out if rest is None else Outputs.empty(rest.size, layout.n_elements)
     if moving is not None:
         views = dataclasses.replace(views, ideal=np.empty_like(views.codes))
-    solve_chunk(layout, backend, chunk if whole else chunk.take(rest), views)
-    if not whole:
+    solve_chunk(layout, backend, chunk if rest is None else chunk.take(rest), views)
+    if rest is not None:
         out.put(rest, views, slice(None))
     return None if moving is None else dominant_pattern(views, moving)
 
