@@ -365,3 +365,40 @@ def test_readable_and_sign_helpers() -> None:
     sign, factors = sign_factors(e * (z4 - z5) / (z1 + z2), [z1, z2, z4, z5, e],
                                  {z4: 39, z5: 40})
     assert sign == -1 and factors == [z5 - z4]
+
+
+# --- the shared symbolic systems (formula/systems.py, also the sweep's symbolic backend) ---
+
+def test_train_systems_of_a_2kh_by_hand() -> None:
+    """Sun s (input: speed 1, torque 1), planets p on carrier c (output), ring fixed on the
+    frame f. Willis in c: s-p, i0 = -z_p/z_s; p-ring, i1 = z_r/z_p. By hand: the planet's
+    balance gives λ1 = i0 f0 λ0 with λ0 = -1 (the sun's), w_c = z_s/(z_s + z_r), and the
+    carrier's reaction -(1 + η0 η1 z_r/z_s): efficiency (1 + η0 η1 k)/(1 + k), k = z_r/z_s."""
+    from powergraph.analyses.formula.systems import solve_linear, train_systems
+
+    z_s, z_p, z_r, e0, e1 = sp.symbols("z_s z_p z_r eta_0 eta_1", positive=True)
+    systems = train_systems(["f", "s", "p", "c"], [("s", "p", "c"), ("p", "f", "c")],
+                            [-z_p / z_s, z_r / z_p], [e0, e1], {"f": 0, "s": 1}, {"s": 1},
+                            ["c", "f"])
+    assert systems.free == ("p", "c") and systems.balanced == ("s", "p")
+    _, (w_p, w_c) = solve_linear(systems.speed_matrix, systems.speed_rhs)
+    assert same(w_c, z_s / (z_s + z_r))
+    assert same(w_p, w_c - z_s / z_p * (1 - w_c))   # s-p Willis row, written out
+    _, forces = solve_linear(systems.force_matrix, systems.force_rhs)
+    assert forces[0] == -1 and same(forces[1], z_p * e0 / z_s)
+    t_c = systems.reactions["c"].xreplace(dict(zip(systems.forces, forces)))
+    assert same(t_c, -(1 + e0 * e1 * z_r / z_s))
+    k = z_r / z_s
+    assert same(-t_c * w_c, (1 + e0 * e1 * k) / (1 + k))
+
+
+def test_stencil_is_element_stencil_exact() -> None:
+    from powergraph.analyses.formula.systems import stencil
+    from powergraph.kinematics.elements import element_stencil
+
+    i, f = sp.symbols("i f")
+    assert stencil(i, f) == (1, -i * f, i * f - 1)
+    assert all(not c.atoms(sp.Float) for c in stencil(i, f))
+    # the same numbers as the float stencil
+    assert [float(c.subs({i: -2.5, f: 0.98})) for c in stencil(i, f)] == pytest.approx(
+        element_stencil(-2.5, 0.98), rel=1e-15)
