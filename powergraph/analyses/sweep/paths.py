@@ -34,17 +34,10 @@ PORT_FIELDS = ("speed", "power", "torque")
 
 @dataclass(frozen=True)
 class Parameter:
-    """One swept model value.
-
-    Attributes
-    ----------
-    path : str
-        The PATH as the user wrote it (the CSV column name).
-    kind : str
-        ``teeth``, ``efficiency``, ``ratio``, ``speed``, ``power`` or ``torque``.
-    targets : tuple
-        Component id (teeth), link indices (efficiency, ratio) or port index (ports).
-    """
+    """One swept model value: the ``path`` as the user wrote it (the CSV column name), its
+    ``kind`` (``teeth``, ``efficiency``, ``ratio``, ``speed``, ``power`` or ``torque``) and
+    its ``targets``: a component id (teeth), link indices (efficiency, ratio) or a port
+    index (ports)."""
 
     path: str
     kind: str
