@@ -4,7 +4,7 @@ Nodes: bodies ("2/3"), elements ("mesh 1-2", "coupling 4-6"), bearings with fric
 drag ("bearing 2-7") and body drags ("drag 6"), the motor(s), the generator(s), "loss",
 and "ground" (the world's reaction on the frame, which does work
 only when the powers are seen from a moving body). The power from body X into element e
-is ``-T_eX · (w_X - w_F)`` with F the observing body (DESIGN §3); losses are the same in
+is ``-T_eX · (w_X - w_F)`` with F the observing body (docs/theory.md); losses are the same in
 every frame.
 
 Examples
