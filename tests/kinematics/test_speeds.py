@@ -1,4 +1,5 @@
-"""Kinematics alone: the RV-40E speeds of tests/data/published_values.yaml, DOF counts, slips, and derived operating cases."""
+"""Kinematics alone: the RV-40E speeds (tests/data/published_values.yaml), DOF counts,
+slips, and derived operating cases."""
 from __future__ import annotations
 
 from pathlib import Path
