@@ -16,7 +16,8 @@ Examples
 """
 from __future__ import annotations
 
-from typing import Any, Callable, Iterable, Sequence
+from contextlib import contextmanager
+from typing import Any, Callable, Iterable, Iterator, Sequence
 
 from powergraph.errors import UsageError
 
@@ -58,24 +59,42 @@ def map_chunks(function: Callable[[Any], Any], items: Iterable[Any], *,
     list
         The results in the order of ``items``.
     """
-    items = list(items)
+    with cluster(scheduler=scheduler, workers=workers) as run:
+        return run(function, items, in_flight)
+
+
+@contextmanager
+def cluster(*, scheduler: str | None = None, workers: int | None = None
+            ) -> Iterator[Callable[..., list[Any]]]:
+    """A mapper ``run(function, items, in_flight=None) -> list`` on one cluster, kept for
+    several maps (a local cluster is started once and closed at the end).
+
+    >>> with cluster() as run:
+    ...     run(abs, [-1, 2])
+    [1, 2]
+    """
     if scheduler is not None and workers is not None:
         raise UsageError("give either a scheduler or a number of workers, not both")
     if workers is not None and (not isinstance(workers, int) or workers < 1):
         raise UsageError(f"workers must be a whole number >= 1, got {workers!r}")
     if scheduler is None and workers is None:
-        return [function(item) for item in items]
+        yield lambda function, items, in_flight=None: [function(item) for item in items]
+        return
+    address = scheduler_address(scheduler) if scheduler is not None else None
     try:
         from dask.distributed import Client, LocalCluster
     except ImportError as exc:  # pragma: no cover - depends on the installation
         raise UsageError("a Dask cluster needs dask[distributed]: "
                          "pip install 'powergraph[dask]'") from exc
-    if scheduler is not None:
-        with Client(scheduler_address(scheduler)) as client:
-            return _run(client, function, items, in_flight)
+    if address is not None:
+        with Client(address) as client:
+            yield lambda function, items, in_flight=None: _run(client, function, list(items),
+                                                               in_flight)
+        return
     with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
-        return _run(client, function, items, in_flight)
+                      dashboard_address=None) as local, Client(local) as client:
+        yield lambda function, items, in_flight=None: _run(client, function, list(items),
+                                                           in_flight)
 
 
 def _run(client: Any, function: Callable, items: Sequence[Any], in_flight: int | None

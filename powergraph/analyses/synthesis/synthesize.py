@@ -22,7 +22,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Iterable, Sequence
 
-from powergraph.analyses.parallel import map_chunks
+from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank_key, signature
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS, classic_graphs
@@ -171,11 +171,12 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
             items += [(graph, gi, li, start, min(layout.size, start + CHUNK), float(ratio),
                        float(tolerance), teeth, planets)
                       for start in range(0, layout.size, CHUNK)]
-    found = map_chunks(_search_item, items, scheduler=scheduler, workers=workers)
-    merged = _merge([h for part in found for h in part])
-    jobs = [(graphs[h.graph], h, float(ratio), teeth, planets, float(mesh_efficiency))
-            for h in merged]
-    rows = map_chunks(_evaluate_item, jobs, scheduler=scheduler, workers=workers)
+    with cluster(scheduler=scheduler, workers=workers) as run:
+        found = run(_search_item, items)
+        merged = _merge([h for part in found for h in part])
+        jobs = [(graphs[h.graph], h, float(ratio), teeth, planets, float(mesh_efficiency))
+                for h in merged]
+        rows = run(_evaluate_item, jobs)
     ranked, seen = [], set()
     for row in sorted(rows, key=rank_key):
         if signature(row) not in seen:
