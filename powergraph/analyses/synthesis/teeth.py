@@ -244,7 +244,8 @@ def layouts(graph: TrainGraph, teeth: tuple[int, int] = (12, 120), planets: int 
                                            alone=not any(st.kinds[k] == "pp" for k in steps[0]),
                                            phased=st.phased(p)))
                        for p, steps, cp, rings in combo)
-        name = "+".join("stepped" if len(b.steps) > 1 else "simple" for b in blocks) or "-"
+        name = "+".join("stepped" if len(b.steps) > 1 else "simple" for b in blocks) or (
+            "cycloid" if khv else "-")
         out.append(Layout(name, graph, st, blocks, khv, teeth, planets))
     return out
 
@@ -255,9 +256,7 @@ def _tuples(steps, cp, rings, teeth: tuple[int, int], planets: int, alone: bool,
     """Rows (steps..., anchor) in range meeting coaxiality and the neighbour condition,
     and assembly when the planet forms a cluster ``alone`` (no planet-planet mesh)."""
     lo, hi = teeth
-    axes = np.arange(lo, hi + 1, dtype=np.int64)
-    grids = np.meshgrid(*([axes] * (len(steps) + (1 if cp else 0))), indexing="ij")
-    values = np.stack([g.ravel() for g in grids], axis=1)
+    values = _candidate_rows(steps, cp, rings, teeth, planets)
     if not cp:
         return values
     block = PlanetBlock(0, steps, cp, rings, values)
@@ -280,6 +279,44 @@ def _tuples(steps, cp, rings, teeth: tuple[int, int], planets: int, alone: bool,
         values = values[assembles(coax, coefficients, planets, phased)]
     values.setflags(write=False)
     return values
+
+
+def _candidate_rows(steps, cp, rings, teeth: tuple[int, int], planets: int) -> np.ndarray:
+    """Rows (steps..., anchor): the anchor and its step over the whole range, every other
+    step only over the interval its meshes' centre distance allows (a superset of the
+    feasible rows, filtered exactly afterwards)."""
+    lo, hi = teeth
+    axes = np.arange(lo, hi + 1, dtype=np.int64)
+    if not cp:
+        grids = np.meshgrid(*([axes] * len(steps)), indexing="ij")
+        return np.stack([g.ravel() for g in grids], axis=1)
+    first = next(i for i, step in enumerate(steps) if cp[0] in step)
+    a, z = np.meshgrid(axes, axes, indexing="ij")
+    anchor, step0 = a.ravel(), z.ravel()
+    centre = anchor - step0 if cp[0] in rings else anchor + step0
+    columns = {first: step0}
+    keep = centre > 0
+    anchor, centre, columns[first] = anchor[keep], centre[keep], step0[keep]
+    reach = np.sin(np.pi / planets) if planets >= 2 else np.inf
+    for i, step in enumerate(steps):
+        if i == first:
+            continue
+        low = np.full(centre.shape, lo)
+        high = np.minimum(hi, np.ceil(centre * reach).astype(np.int64) - 2) if planets >= 2 \
+            else np.full(centre.shape, hi)
+        for k in step:
+            if k in cp and k in rings:       # ring = centre + step
+                low, high = np.maximum(low, lo - centre), np.minimum(high, hi - centre)
+            elif k in cp:                    # sun = centre - step
+                low, high = np.maximum(low, centre - hi), np.minimum(high, centre - lo)
+        count = np.clip(high - low + 1, 0, None)
+        rows = np.repeat(np.arange(centre.size), count)
+        offsets = np.arange(rows.size) - np.repeat(np.cumsum(count) - count, count)
+        new = low[rows] + offsets
+        anchor, centre = anchor[rows], centre[rows]
+        columns = {j: c[rows] for j, c in columns.items()}
+        columns[i] = new
+    return np.stack([columns[i] for i in range(len(steps))] + [anchor], axis=1)
 
 
 def assembles(coaxial: list[np.ndarray], coefficients: list[np.ndarray], planets: int,
