@@ -90,7 +90,8 @@ def wl_hash(graph: Any) -> str:
     """Weisfeiler-Lehman hash on vertex and edge kinds (equal for isomorphic graphs)."""
     import networkx as nx
 
-    return nx.weisfeiler_lehman_graph_hash(graph, node_attr="kind", edge_attr="kind")
+    return nx.weisfeiler_lehman_graph_hash(graph, node_attr="kind", edge_attr="kind",
+                                           iterations=4)
 
 
 def same(a: Any, b: Any) -> bool:
@@ -124,6 +125,38 @@ def classify(items: Iterable[T], graph_of: Callable[[T], Any]) -> tuple[list[T],
             index.append(len(representatives))
             representatives.append(item)
     return representatives, index
+
+
+def automorphisms(links: int, axes: Sequence[Iterable[int]]) -> list[tuple[int, ...]]:
+    """The link permutations that map an axis structure onto itself (VF2 with the matcher).
+
+    Two gear-pair sets on the same axis structure give isomorphic d-graphs exactly when
+    one of these permutations maps one onto the other, since the axis structure is part of
+    the d-graph.
+
+    Examples
+    --------
+    >>> sorted(automorphisms(3, [{0, 1}, {0, 2}]))
+    [(0, 1, 2), (0, 2, 1)]
+    """
+    from networkx.algorithms.isomorphism import GraphMatcher
+
+    graph = incidence_graph(links, list(axes))
+    matcher = GraphMatcher(graph, graph, node_match=node_match, edge_match=edge_match)
+    return [tuple(m[(0, n)][1] for n in range(links)) for m in matcher.isomorphisms_iter()]
+
+
+def images(gear_pairs: Iterable[Sequence[int]], group: Sequence[Sequence[int]]) -> set[tuple]:
+    """Every image of a gear-pair set under a group of link permutations (sorted tuples).
+
+    Examples
+    --------
+    >>> sorted(images([(1, 2, 0)], [(0, 1, 2), (1, 0, 2)]))
+    [((0, 2, 1),), ((1, 2, 0),)]
+    """
+    pairs = list(gear_pairs)
+    return {tuple(sorted((min(p[u], p[v]), max(p[u], p[v]), p[c]) for u, v, c in pairs))
+            for p in group}
 
 
 def unique(items: Iterable[T], graph_of: Callable[[T], Any]) -> list[T]:

@@ -121,14 +121,18 @@ def enumerate_trains(links: int, dof: int = 1) -> EnumerationResult:
     >>> result.rotation_graphs, result.displacement_graphs
     (2, 3)
     """
-    from powergraph.analyses.synthesis.canonical import (classify, displacement_graph,
+    from powergraph.analyses.synthesis.canonical import (automorphisms, classify, images,
                                                          rotation_graph)
     from powergraph.analyses.synthesis.rules import axis_structures, gear_sets
 
     _check(links, dof)
-    found = [(axes, gears) for axes in axis_structures(links)
-             for gears in gear_sets(links, axes, dof)]
-    trains, _ = classify(found, lambda t: displacement_graph(links, *t))
+    trains = []
+    for axes in axis_structures(links):
+        group, seen = automorphisms(links, axes), set()
+        for gears in gear_sets(links, axes, dof):
+            if tuple(sorted(gears)) not in seen:      # a new orbit: keep it, mark its images
+                seen.update(images(gears, group))
+                trains.append((axes, gears))
     _, rotation = classify([g for _, g in trains], lambda g: rotation_graph(links, g))
     graphs = tuple(_train_graph(links, axes, gears, f"{links}-link d-graph {i + 1}")
                    for i, (axes, gears) in enumerate(trains))
