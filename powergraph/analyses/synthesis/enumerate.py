@@ -100,13 +100,15 @@ class EnumerationResult:
         return plot_graphs(self.graphs, ax=ax, **kwargs)
 
 
-def enumerate_trains(links: int, dof: int = 1) -> EnumerationResult:
+def enumerate_trains(links: int, dof: int = 1, fractionated: bool = False) -> EnumerationResult:
     """Every non-isomorphic planetary gear train graph of ``links`` links and ``dof`` DOF.
 
     Parameters
     ----------
     links : number of links (frame included), 3 to :data:`MAX_LINKS`
     dof : degrees of freedom, ``1 <= dof <= links - 2``; ``links - 1 - dof`` gear pairs
+    fractionated : also keep fractionated trains (two trains sharing one link; only
+        possible with two or more DOF)
 
     Returns
     -------
@@ -129,7 +131,7 @@ def enumerate_trains(links: int, dof: int = 1) -> EnumerationResult:
     trains = []
     for axes in axis_structures(links):
         group, seen = automorphisms(links, axes), set()
-        for gears in gear_sets(links, axes, dof):
+        for gears in gear_sets(links, axes, dof, fractionated):
             if tuple(sorted(gears)) not in seen:      # a new orbit: keep it, mark its images
                 seen.update(images(gears, group))
                 trains.append((axes, gears))

@@ -14,7 +14,10 @@ Freudenstein 1970); the carrier is therefore unique. A set of ``G = N - 1 - dof`
 pairs is kept when no sub-chain is rigid: every set ``S`` of ``n >= 2`` links joined by
 their own axes (``n - 1`` turning pairs) holds at most ``n - 2`` of the gear pairs, i.e.
 has planar mobility ``3(n - 1) - 2(n - 1) - g >= 1``. For more than one degree of freedom
-a link must also do something: mesh, or carry a mesh (no free-turning link).
+a link must also do something (mesh, or carry a mesh: no free-turning link), and the train
+must not be **fractionated**: no link whose removal splits the others into parts joined
+neither by an axis nor by a gear pair (two trains sharing one link, each with its own
+freedom; Tsai & Lin 1989). Both hold by themselves for one degree of freedom.
 """
 from __future__ import annotations
 
@@ -108,9 +111,11 @@ def subchains(links: int, axes: Axes) -> list[int]:
     return found
 
 
-def gear_sets(links: int, axes: Axes, dof: int = 1) -> Iterator[tuple[GearPair, ...]]:
+def gear_sets(links: int, axes: Axes, dof: int = 1, fractionated: bool = False
+              ) -> Iterator[tuple[GearPair, ...]]:
     """Every set of ``links - 1 - dof`` candidate gear pairs with no rigid sub-chain.
 
+    ``fractionated=True`` keeps the fractionated trains of two or more DOF.
     Depth-first over the candidates, counting the gear pairs inside each sub-chain and
     cutting a branch as soon as one holds ``n - 1`` of them.
 
@@ -135,7 +140,8 @@ def gear_sets(links: int, axes: Axes, dof: int = 1) -> Iterator[tuple[GearPair, 
     def extend(start: int) -> Iterator[tuple[GearPair, ...]]:
         if len(chosen) == wanted:
             gears = tuple(candidates[i] for i in chosen)
-            if dof == 1 or _all_links_work(links, axes, gears):
+            if dof == 1 or (_all_links_work(links, axes, gears)
+                            and (fractionated or not is_fractionated(links, axes, gears))):
                 yield gears
             return
         for i in range(start, len(candidates) - (wanted - len(chosen)) + 1):
@@ -156,3 +162,33 @@ def _all_links_work(links: int, axes: Axes, gears: tuple[GearPair, ...]) -> bool
     """No free-turning link: each link meshes or carries a mesh (automatic for 1 DOF)."""
     busy = {x for pair in gears for x in pair}
     return len(busy) == links
+
+
+def is_fractionated(links: int, axes: Axes, gears: tuple[GearPair, ...]) -> bool:
+    """Whether one link joins two parts that share neither an axis nor a gear pair.
+
+    Examples
+    --------
+    Two gear pairs on a common carrier 0, one of them on a second carrier 1 turning on 0:
+
+    >>> axes = (frozenset({0, 3}), frozenset({0, 4}), frozenset({0, 1}), frozenset({1, 2}))
+    >>> is_fractionated(5, axes, ((0, 2, 1), (3, 4, 0)))
+    True
+    """
+    for cut in range(links):
+        rest = [n for n in range(links) if n != cut]
+        part = {n: n for n in rest}
+
+        def find(x: int) -> int:
+            while part[x] != x:
+                x = part[x]
+            return x
+
+        joins = [(u, v) for u, v, _ in gears]
+        joins += [(x, y) for axis in axes for x in axis for y in axis]
+        for x, y in joins:
+            if cut not in (x, y):
+                part[find(x)] = find(y)
+        if len({find(n) for n in rest}) > 1:
+            return True
+    return False
