@@ -165,3 +165,177 @@ def test_agrees_with_an_independent_brute_force(links: int) -> None:
 def test_five_links_agree_with_the_brute_force() -> None:
     result = enumerate_trains(5)
     assert _brute_force(5, 1) == (result.rotation_graphs, result.displacement_graphs)
+
+
+def test_two_dof_fractionated_trains_are_kept_only_on_request() -> None:
+    """Five links, two gear pairs, two DOF: a carrier 0 holding the pair 3-4, and a second
+    carrier 1 on 0 holding the pair 0-2, shares only link 0 with it (fractionated: two
+    1-DOF trains with one link in common), so it appears only with fractionated=True."""
+    split = TrainGraph(5, ((0, 3, 0), (0, 4, 1), (0, 1, 2), (1, 2, 3)), ((0, 2, 1), (3, 4, 0)))
+    assert enumerate_trains(5, 2).find(split) is None
+    assert enumerate_trains(5, 2, fractionated=True).find(split) is not None
+
+
+def test_every_two_dof_link_meshes_or_carries() -> None:
+    for graph in enumerate_trains(6, 2).graphs:
+        assert {x for pair in graph.gear_pairs for x in pair} == set(range(6))
+
+
+def test_bad_sizes_are_usage_errors() -> None:
+    for links, dof in [(2, 1), (10, 1), (5, 0), (5, 4), (5.0, 1), (True, 1)]:
+        with pytest.raises(UsageError):
+            enumerate_trains(links, dof)
+
+
+# --- every graph is a train powergraph solves --------------------------------------------
+@pytest.mark.parametrize("links, dof", [(3, 1), (4, 1), (5, 1), (5, 2),
+                                        pytest.param(6, 1, marks=pytest.mark.slow),
+                                        pytest.param(6, 2, marks=pytest.mark.slow),
+                                        pytest.param(6, 3, marks=pytest.mark.slow)])
+def test_every_graph_solves_with_the_dof_it_claims(links: int, dof: int) -> None:
+    """Placeholder teeth (distinct primes, external), a frame and ports among the coaxial
+    links: the model is valid, has ``dof`` degrees of freedom, solves and conserves."""
+    for graph in enumerate_trains(links, dof).graphs:
+        assert graph.dof == dof
+        model = model_from_dict(model_document(graph, mesh_efficiency=0.97))
+        assert degrees_of_freedom(model) == dof
+        assert_conservation(solve(model))
+
+
+def test_the_model_document_says_its_teeth_are_placeholders() -> None:
+    doc = model_document(enumerate_trains(4).graphs[0])
+    assert "placeholder" in doc["description"]
+    assert len({c["teeth"] for c in doc["components"].values() if "teeth" in c}) == 4
+
+
+# --- isomorphism ---------------------------------------------------------------------------
+def _relabelled(graph: TrainGraph, rng: random.Random) -> TrainGraph:
+    """Links renumbered, axis labels renumbered, each axis journalled as another tree
+    (every coaxial link on one of them, chosen at random): the same train."""
+    links = list(range(graph.links))
+    rng.shuffle(links)
+    labels = list(range(len(axes_of(graph))))
+    rng.shuffle(labels)
+    turning = []
+    for label, axis in zip(labels, axes_of(graph)):
+        hub = rng.choice(sorted(axis))
+        turning += [(links[hub], links[x], label) for x in sorted(axis) if x != hub]
+    gears = [(links[u], links[v], links[c]) for u, v, c in graph.gear_pairs]
+    rng.shuffle(turning)
+    rng.shuffle(gears)
+    return TrainGraph(graph.links, tuple(turning), tuple(gears))
+
+
+def test_relabelled_links_give_the_same_canonical_form_and_graph() -> None:
+    rng = random.Random(11)
+    result = enumerate_trains(5)
+    for index, graph in enumerate(result.graphs):
+        other = _relabelled(graph, rng)
+        assert canonical_form(d_graph(other)) == canonical_form(d_graph(graph))
+        assert canonical_form(r_graph(other)) == canonical_form(r_graph(graph))
+        assert result.find(other) == index
+
+
+def test_the_graphs_are_pairwise_non_isomorphic_by_the_canonical_form() -> None:
+    """An exact certificate, independent of the VF2 matcher used by the enumeration."""
+    result = enumerate_trains(6)
+    assert len({canonical_form(d_graph(g)) for g in result.graphs}) == 81
+    assert len({canonical_form(r_graph(g)) for g in result.graphs}) == 27
+    classes = {}
+    for graph, index in zip(result.graphs, result.rotation_index):
+        classes.setdefault(index, set()).add(canonical_form(r_graph(graph)))
+    assert all(len(forms) == 1 for forms in classes.values())
+
+
+def test_bearing_arrangement_is_not_a_new_train() -> None:
+    """Pseudo-isomorphism: the sun journalled in the frame or in the carrier (a different
+    labelled tree) is the same simple planetary."""
+    in_frame = TrainGraph(4, ((0, 1, 0), (0, 2, 0), (2, 3, 1)), ((1, 3, 2), (0, 3, 2)))
+    in_carrier = TrainGraph(4, ((0, 2, 0), (2, 1, 0), (2, 3, 1)), ((1, 3, 2), (0, 3, 2)))
+    assert canonical_form(d_graph(in_frame)) == canonical_form(d_graph(in_carrier))
+
+
+def test_same_rotation_graph_different_trains() -> None:
+    """Pseudo-isomorphism the other way: the simple planetary and the ordinary three-gear
+    train (gears 1 and 3 not coaxial) mesh alike about the same carrier - one r-graph - but
+    are different trains (d-graphs)."""
+    planetary = TrainGraph(4, ((0, 1, 0), (0, 3, 0), (0, 2, 1)), ((1, 2, 0), (2, 3, 0)))
+    ordinary = TrainGraph(4, ((0, 1, 0), (0, 2, 1), (0, 3, 2)), ((1, 2, 0), (2, 3, 0)))
+    assert canonical_form(r_graph(planetary)) == canonical_form(r_graph(ordinary))
+    assert canonical_form(d_graph(planetary)) != canonical_form(d_graph(ordinary))
+    result = enumerate_trains(4)
+    a, b = result.find(planetary), result.find(ordinary)
+    assert None not in (a, b) and a != b
+    assert result.rotation_index[a] == result.rotation_index[b]
+
+
+# --- the classic trains are among the graphs -----------------------------------------------
+CLASSIC = {
+    # K-H core of a K-H-V drive: fixed ring 0, eccentric carrier 1, planet (disc) 2.
+    "K-H (of K-H-V)": TrainGraph(3, ((0, 1, 0), (1, 2, 1)), ((0, 2, 1),)),
+    # 2K-H: ring 0 (frame), sun 1, carrier 2, planet 3.
+    "2K-H simple planetary": TrainGraph(4, ((0, 1, 0), (0, 2, 0), (2, 3, 1)),
+                                        ((1, 3, 2), (0, 3, 2))),
+    # Stepped planet: sun 1 meshes step a, ring 0 meshes step b of one planet link 3.
+    "2K-H stepped planet": TrainGraph(4, ((0, 2, 0), (1, 2, 0), (2, 3, 1)),
+                                      ((1, 3, 2), (3, 0, 2))),
+    # Wolfrom (3K): fixed ring 0, sun 1, output ring 2, free carrier 3, stepped planet 4.
+    "Wolfrom 3K": TrainGraph(5, ((0, 1, 0), (0, 2, 0), (0, 3, 0), (3, 4, 1)),
+                             ((1, 4, 3), (0, 4, 3), (2, 4, 3))),
+    # Ravigneaux, large sun 0 held: small sun 1, ring 2, carrier 3, short planet 4 (meshes
+    # the small sun and the long planet), long planet 5 (large sun, ring).
+    "Ravigneaux (large sun held)": TrainGraph(
+        6, ((0, 1, 0), (0, 2, 0), (0, 3, 0), (3, 4, 1), (3, 5, 2)),
+        ((1, 4, 3), (4, 5, 3), (0, 5, 3), (2, 5, 3))),
+    # Simpson, rear carrier 0 held: common sun 1, front ring 2, front carrier + rear ring 3,
+    # front planet 4 (on 3), rear planet 5 (on 0).
+    "Simpson (rear carrier held)": TrainGraph(
+        6, ((0, 1, 0), (0, 2, 0), (0, 3, 0), (3, 4, 1), (0, 5, 2)),
+        ((1, 4, 3), (2, 4, 3), (1, 5, 0), (3, 5, 0))),
+}
+
+
+@pytest.mark.parametrize("name", list(CLASSIC))
+def test_classic_trains_are_enumerated(name: str) -> None:
+    train = CLASSIC[name]
+    assert enumerate_trains(train.links, train.dof).find(train) is not None
+
+
+def test_simple_and_stepped_planet_are_one_graph() -> None:
+    """A graph does not tell one gear on a link from two: the stepped planet is the simple
+    planetary's graph (the tooth numbers tell them apart)."""
+    result = enumerate_trains(4)
+    assert result.find(CLASSIC["2K-H simple planetary"]) == \
+        result.find(CLASSIC["2K-H stepped planet"])
+
+
+def test_a_housing_that_only_holds_shafts_is_not_a_second_freedom() -> None:
+    """The 2K-H differential with its housing 4 on the main axis (5 links, 2 gear pairs,
+    2 DOF by mobility): the housing neither meshes nor carries, so it only adds the free
+    turning of the whole gear set; the train is the 4-link 1-DOF graph (whose frame may be
+    any member), not a 5-link 2-DOF one."""
+    differential = TrainGraph(5, ((4, 0, 0), (4, 1, 0), (4, 2, 0), (2, 3, 1)),
+                              ((1, 3, 2), (0, 3, 2)))
+    assert differential.dof == 2
+    assert enumerate_trains(5, 2).find(differential) is None
+    assert enumerate_trains(4).find(CLASSIC["2K-H simple planetary"]) is not None
+
+
+# --- the result ----------------------------------------------------------------------------
+def test_result_protocol() -> None:
+    import matplotlib.pyplot as plt
+
+    result = enumerate_trains(5)
+    data = json.loads(json.dumps(result.to_dict()))
+    assert set(data) == {"links", "dof", "rotation_graphs", "displacement_graphs", "graphs"}
+    assert (data["rotation_graphs"], data["displacement_graphs"]) == (6, 13)
+    assert len(data["graphs"]) == 13 and all(len(g["gear_pairs"]) == 3 for g in data["graphs"])
+    assert "displacement graphs (d-graphs)  13" in result.text_report()
+    _, ax = plt.subplots()
+    assert result.plot(ax=ax) is ax
+    plt.close(ax.figure)
+
+
+def test_six_link_report_quotes_the_published_counts() -> None:
+    report = enumerate_trains(6).text_report()
+    assert "rotation graphs (r-graphs)      27   (published: 27)" in report
