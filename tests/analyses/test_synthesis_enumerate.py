@@ -9,6 +9,7 @@ tree paths, rigidity by the numerical rank of the Willis equations) must agree.
 """
 from __future__ import annotations
 
+import functools
 import itertools
 import json
 import random
@@ -16,7 +17,8 @@ import random
 import numpy as np
 import pytest
 
-from powergraph.analyses.synthesis import TrainGraph, enumerate_trains
+from powergraph.analyses.synthesis import TrainGraph
+from powergraph.analyses.synthesis import enumerate_trains as _enumerate_trains
 from powergraph.analyses.synthesis.canonical import (canonical_form, displacement_graph,
                                                      rotation_graph)
 from powergraph.analyses.synthesis.enumerate import axes_of, d_graph, r_graph
@@ -26,6 +28,9 @@ from powergraph.kinematics import degrees_of_freedom
 from powergraph.model import model_from_dict
 from powergraph.statics import solve
 from powergraph.testing import assert_conservation
+
+# The results are frozen; the tests share them.
+enumerate_trains = functools.lru_cache(maxsize=None)(_enumerate_trains)
 
 
 # --- counts ------------------------------------------------------------------------------
@@ -184,7 +189,7 @@ def test_every_two_dof_link_meshes_or_carries() -> None:
 def test_bad_sizes_are_usage_errors() -> None:
     for links, dof in [(2, 1), (10, 1), (5, 0), (5, 4), (5.0, 1), (True, 1)]:
         with pytest.raises(UsageError):
-            enumerate_trains(links, dof)
+            _enumerate_trains(links, dof)
 
 
 # --- every graph is a train powergraph solves --------------------------------------------
@@ -236,6 +241,7 @@ def test_relabelled_links_give_the_same_canonical_form_and_graph() -> None:
         assert result.find(other) == index
 
 
+@pytest.mark.slow
 def test_the_graphs_are_pairwise_non_isomorphic_by_the_canonical_form() -> None:
     """An exact certificate, independent of the VF2 matcher used by the enumeration."""
     result = enumerate_trains(6)
