@@ -18,6 +18,7 @@ Examples
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any, Iterable, Sequence
@@ -119,13 +120,24 @@ class SynthesisResult:
 
 
 def default_graphs(max_links: int = 6) -> tuple[TrainGraph, ...]:
-    """The enumeration's 1-DOF graphs with 4 to ``max_links`` links when it is available
-    (plus the coupled K-H-V and RV trains, which it does not produce), else the classics."""
+    """The enumeration's 1-DOF graphs with 3 to ``max_links`` links when it is available
+    (those isomorphic to a classic train named after it, e.g. ``Wolfrom 3K (5-link
+    d-graph 1)``; plus the coupled K-H-V and RV trains, which it does not produce), else
+    the classics."""
     try:
         from powergraph.analyses.synthesis import enumerate_trains  # type: ignore[attr-defined]
     except ImportError:
         return classic_graphs(max_links)
-    graphs = [g for n in range(4, max_links + 1) for g in enumerate_trains(links=n, dof=1)]
+    graphs = []
+    for n in range(3, max_links + 1):
+        found = enumerate_trains(links=n, dof=1)
+        names: dict[int | None, str] = {}
+        for name, g in CLASSICS.items():
+            if g.links == n and not g.couplings:
+                index = found.find(g)
+                names[index] = f"{names[index]} / {name}" if index in names else name
+        graphs += [dataclasses.replace(g, name=f"{names[i]} ({g.name})") if i in names else g
+                   for i, g in enumerate(found.graphs)]
     coupled = [g for g in CLASSICS.values() if g.couplings and g.links <= max_links]
     return tuple(graphs) + tuple(coupled)
 

@@ -224,6 +224,9 @@ def layouts(graph: TrainGraph, teeth: tuple[int, int] = (12, 120), planets: int 
     st = structure(graph)
     if st is None:
         return []
+    meshing = {x for u, v, _ in graph.gear_pairs for x in (u, v) if x not in st.coaxial}
+    if not meshing <= set(st.planets()) | st.coupled:
+        return []           # a planet on a planet (not coupled): not sized here
     per_planet = []
     for p in st.planets():
         cp = tuple(k for k, (u, v, _) in enumerate(graph.gear_pairs)
