@@ -108,8 +108,12 @@ def gear_teeth(layout: Layout, flat: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
-                  planets: int, mesh_efficiency: float) -> SynthesisRow:
-    """The best tooth set of one arrangement, its row (circulating power by one solve)."""
+                  planets: int, mesh_efficiency: float) -> SynthesisRow | None:
+    """The best tooth set of one arrangement, its row (circulating power by one solve).
+
+    Tooth sets with an idle mesh (no loss: a coaxial link that is neither fixed, input
+    nor output turns freely, so the train is a smaller one with a passenger) and those the
+    solver cannot settle are left out; None when none is left."""
     from powergraph.analyses.sweep import compile_sweep
     from powergraph.kinematics import backdriven
     from powergraph.model import model_from_dict
@@ -126,7 +130,10 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
     pv = _max_virtual_power(forward, mesh_efficiency)
     back_eff = np.where(back.converged, back.efficiency, -np.inf)
     eff = np.where(forward.converged, forward.efficiency, -np.inf)
-    order = np.lexsort((np.nan_to_num(pv, nan=np.inf), -back_eff, -eff))
+    working = forward.converged & ~_idle(forward, mesh_efficiency, len(graph.gear_pairs))
+    if not working.any():
+        return None
+    order = np.lexsort((np.nan_to_num(pv, nan=np.inf), -back_eff, -eff, ~working))
     best = int(order[0])
     chosen = {g: int(v[best]) for g, v in teeth.items()}
     doc = _document(layout, hits, chosen, mesh_efficiency)
@@ -145,7 +152,7 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
         circulating_power=float(single.circulating_power),
         max_virtual_power_ratio=None if np.isnan(pv[best]) else float(pv[best]),
         meshes=len(graph.gear_pairs), input_power=float(forward.input_power[best]),
-        candidates=int(hits.flat.size), document=doc)
+        candidates=int(working.sum()), document=doc)
 
 
 def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficiency: float
@@ -156,6 +163,16 @@ def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficie
                                       outputs=(hits.output,), teeth=pairs,
                                       internal=layout.internal,
                                       mesh_efficiency=mesh_efficiency, name=name)
+
+
+def _idle(result, mesh_efficiency: float, meshes: int) -> np.ndarray:
+    """Some mesh (links ``0 .. meshes-1``; couplings are ideal) passes no power, detected
+    from its loss (ideal meshes cannot tell)."""
+    if mesh_efficiency >= 1.0 or meshes == 0:
+        return np.zeros(result.shape, dtype=bool)
+    smallest = np.min(np.stack([np.abs(np.asarray(result.losses[k])) for k in range(meshes)]),
+                      axis=0)
+    return ~(smallest > 1e-9 * np.abs(result.input_power))
 
 
 def _max_virtual_power(result, mesh_efficiency: float) -> np.ndarray:

@@ -188,7 +188,7 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         merged = _merge([h for part in found for h in part])
         jobs = [(graphs[h.graph], h, float(ratio), teeth, planets, float(mesh_efficiency))
                 for h in merged]
-        rows = run(_evaluate_item, jobs)
+        rows = [row for row in run(_evaluate_item, jobs) if row is not None]
     ranked, seen = [], set()
     for row in sorted(rows, key=rank_key):
         if signature(row) not in seen:
@@ -198,7 +198,7 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         ratio=float(ratio), tolerance=float(tolerance), teeth=teeth, planets=planets,
         mesh_efficiency=float(mesh_efficiency),
         rows=tuple(ranked if top is None else ranked[:top]),
-        feasible=sum(h.flat.size for h in merged), arrangements=len(ranked),
+        feasible=sum(row.candidates for row in rows), arrangements=len(ranked),
         evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped))
 
 
@@ -207,7 +207,7 @@ def _search_item(item: tuple) -> list[Hits]:
     return search_range(graph, gi, li, start, stop, ratio, tolerance, teeth, planets)
 
 
-def _evaluate_item(job: tuple) -> SynthesisRow:
+def _evaluate_item(job: tuple) -> SynthesisRow | None:
     graph, hits, ratio, teeth, planets, mesh_efficiency = job
     return evaluate_hits(graph, hits, ratio, teeth, planets, mesh_efficiency)
 
