@@ -236,6 +236,22 @@ def test_double_planet_found_with_its_assembly_condition() -> None:
             assert zs
 
 
+@pytest.mark.parametrize("name, ratio", [
+    pytest.param("Wolfrom 3K", 115.0, marks=pytest.mark.slow),  # models/wolfrom_3k.yaml
+    pytest.param("Ravigneaux", 2.4, marks=pytest.mark.slow),    # ravigneaux_first.yaml
+    pytest.param("Simpson", 7 / 3, marks=pytest.mark.slow),     # simpson_first.yaml
+    ("two 2K-H stages", 100.0),       # models/planetary_2kh_two_stages_100.yaml
+    ("K-H-V", -119.0),                # models/cycloid_khv_119.yaml, -z_disc/(z_ring - z_disc)
+])
+def test_classic_trains_found_at_their_reference_ratios(name, ratio) -> None:
+    result = synthesize(ratio, graphs=[CLASSICS[name]], top=3)
+    assert result.rows
+    for row in result:
+        assert abs(row.ratio / ratio - 1) <= 0.005
+        check_single_solve(row)
+        check_geometry(row, 3)
+
+
 # --- conditions, one at a time ------------------------------------------------------------
 def test_assembly_closed_forms_of_the_textbooks() -> None:
     one = lambda v: np.array([v])  # noqa: E731

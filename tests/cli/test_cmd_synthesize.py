@@ -7,6 +7,7 @@ written model files (with ``assert_conservation``).
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 
@@ -44,10 +45,16 @@ def test_json_rows_carry_the_compare_fields(capsys) -> None:
                     "circulating_power", "max_virtual_power_ratio", "meshes", "teeth"):
             assert key in row
         assert abs(row["ratio"] / 5 - 1) <= 0.01
-    simple = [r for r in data["rows"] if r["layout"] == "simple" and r["fixed"] == 0
-              and r["input"] == 1 and r["output"] == 3 and r["rings"] == ["g1b"]]
-    for row in simple:          # ring (gear g1b) fixed, sun g0a in, carrier out
-        assert row["ratio"] == pytest.approx(1 + row["teeth"]["g1b"] / row["teeth"]["g0a"])
+    simple = [r for r in data["rows"] if r["layout"] == "simple"
+              and re.search(r"sun L\d in, carrier L\d out, ring L\d fixed", r["name"])]
+    assert simple
+    for row in simple:          # teeth: sun, planet twice, ring
+        ring = row["teeth"][row["rings"][0]]
+        values = sorted(row["teeth"].values())
+        planet = next(z for z in values if values.count(z) == 2)
+        (sun,) = [z for z in values if z not in (planet, ring)]
+        assert ring == sun + 2 * planet                          # coaxial
+        assert row["ratio"] == pytest.approx(1 + ring / sun)     # Willis, ring fixed
 
 
 @pytest.mark.slow
