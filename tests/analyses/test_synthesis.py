@@ -311,6 +311,8 @@ def test_result_protocol_and_json() -> None:
     json.dumps(result.to_dict())
     text = result.text_report()
     assert "synthesis for ratio 5" in text and "eff %" in text
+    ax = result.plot()
+    assert [t.get_text() for t in ax.get_xticklabels()] == [r.name for r in result]
 
 
 @pytest.mark.parametrize("kwargs, message", [
