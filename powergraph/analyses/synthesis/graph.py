@@ -11,6 +11,10 @@ Vertices are the train's links (rigid members, the frame among them). Two kinds 
 
 The turning pairs form a spanning tree of the links, so a train of ``N`` links has
 ``N - 1`` of them, and planar mobility gives ``dof = N - 1 - G`` for ``G`` gear pairs.
+
+Optionally, **couplings** ``(u, v)``: an equal-speed mechanism (parallel cranks, pin-and-hole
+"W" mechanism, Oldham coupling) between a planet and a coaxial link, as in the V of a
+K-H-V (cycloid) stage; each removes one degree of freedom like a gear pair.
 """
 from __future__ import annotations
 
@@ -36,11 +40,12 @@ class TrainGraph:
     turning_pairs: tuple[tuple[int, int, int], ...]
     gear_pairs: tuple[tuple[int, int, int], ...]
     name: str | None = None
+    couplings: tuple[tuple[int, int], ...] = ()
 
     @property
     def dof(self) -> int:
-        """Degrees of freedom by planar mobility: ``N - 1 - G``."""
-        return self.links - 1 - len(self.gear_pairs)
+        """Degrees of freedom by planar mobility: ``N - 1 - G - C`` (``C`` couplings)."""
+        return self.links - 1 - len(self.gear_pairs) - len(self.couplings)
 
     def axes_of(self, link: int) -> frozenset[int]:
         """The axis labels of the turning pairs at ``link``."""
@@ -55,7 +60,7 @@ class TrainGraph:
         Link ``L`` becomes component ``"L{L}"``; side ``s`` (0 or 1) of gear pair ``k``
         becomes gear ``"g{k}{'ab'[s]}"`` fixed to its link, with ``teeth[(k, s)]`` teeth;
         ``internal[k] = s`` makes side ``s`` of pair ``k`` the internal gear (a ring).
-        Turning pairs are recorded as ``bearing`` links.
+        Turning pairs are recorded as ``bearing`` links, couplings as ``coupling`` links.
 
         Parameters
         ----------
@@ -85,9 +90,11 @@ class TrainGraph:
                            "carrier": f"L{carrier}"})
         bearings = [{"type": "bearing", "between": [f"L{u}", f"L{v}"]}
                     for u, v, _ in self.turning_pairs]
+        couplings = [{"type": "coupling", "between": [f"L{u}", f"L{v}"]}
+                     for u, v in self.couplings]
         ports = [{"component": f"L{n}", "role": "input", "speed": input_speed,
                   **({"power": input_power} if i == 0 else {})} for i, n in enumerate(inputs)]
         ports += [{"component": f"L{n}", "role": "output"} for n in outputs]
         return {"name": name or self.name or f"{self.links}-link train",
                 "defaults": {"mesh_efficiency": mesh_efficiency},
-                "components": components, "links": meshes + fixed + bearings, "ports": ports}
+                "components": components, "links": meshes + fixed + couplings + bearings, "ports": ports}

@@ -1,0 +1,200 @@
+"""Figures of merit of the feasible tooth sets, vectorised, and their ranking.
+
+Each arrangement (graph, layout, fixed, input, output) with hits is built once as a model
+and compiled once with :func:`powergraph.analyses.sweep.compile_sweep`, forward and driven
+from its output (:func:`powergraph.kinematics.backdriven`): one call per direction gives
+the ratio, efficiency, self-locking flag and every mesh loss of all its tooth sets. A
+mesh's loss is ``(1 - eta)`` times the power it passes in its carrier's frame (its
+virtual power), so the largest virtual power over the input power is
+``max(loss) / ((1 - eta) P_in)``.
+
+Within an arrangement the best tooth set is the one with the highest efficiency, then
+back-driven efficiency, then the smallest largest virtual power. Across arrangements
+(:func:`rank_key`) rows are ordered by efficiency and back-driven efficiency (each to
+0.1 percentage point), circulating power over input power (to 0.1 %; one ``solve`` of
+each arrangement's best tooth set), meshes, and largest virtual power.
+"""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Any, Mapping
+
+import numpy as np
+
+from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
+from powergraph.analyses.synthesis.teeth import Layout
+
+
+@dataclass(frozen=True)
+class SynthesisRow:
+    """One arrangement at its best tooth set, with the ``compare`` table's figures.
+
+    ``teeth`` maps gear ids (``g0a``: side a of gear pair 0) to tooth numbers; ``rings``
+    lists the internal gears; ``candidates`` counts the feasible tooth sets of the
+    arrangement. Powers in W.
+    """
+
+    name: str
+    graph: str
+    layout: str
+    fixed: int
+    input: int
+    output: int
+    teeth: Mapping[str, int]
+    rings: tuple[str, ...]
+    ratio: float
+    ratio_error: float
+    efficiency: float
+    self_locking: bool
+    backdrive_efficiency: float | None
+    backdrive_self_locking: bool | None
+    circulating_power: float
+    max_virtual_power_ratio: float | None
+    meshes: int
+    input_power: float
+    candidates: int
+    document: Mapping[str, Any]
+
+    def to_dict(self) -> dict[str, Any]:
+        """Every field but the model document (see :meth:`model_document`)."""
+        out = asdict(self)
+        out.pop("document")
+        out["teeth"] = dict(self.teeth)
+        out["rings"] = list(self.rings)
+        return out
+
+    def model_document(self) -> dict[str, Any]:
+        """The powergraph model of this train (``model_from_dict`` takes it)."""
+        import copy
+
+        return copy.deepcopy(dict(self.document))
+
+
+def role_names(layout: Layout) -> dict[int, str]:
+    """A readable role per coaxial link: ``carrier``, ``sun``, ``ring``, ``crank``,
+    ``output disk`` (coupled), joined by ``+`` for a link with several."""
+    st, graph = layout.structure, layout.graph
+    internal = layout.internal
+    roles: dict[int, list[str]] = {c: [] for c in st.coaxial}
+    for k, (u, v, carrier) in enumerate(graph.gear_pairs):
+        if carrier in roles:
+            name = "crank" if st.kinds[k] == "khv" else "carrier"
+            if name not in roles[carrier]:
+                roles[carrier].append(name)
+        side = st.coaxial_side[k]
+        if side is not None:
+            link = (u, v)[side]
+            name = "ring" if internal.get(k) == side else "sun"
+            if name not in roles[link]:
+                roles[link].append(name)
+    for u, v in graph.couplings:
+        for link in (u, v):
+            if link in roles:
+                roles[link].append("output disk")
+    return {c: "+".join(r) or "link" for c, r in roles.items()}
+
+
+def arrangement_name(layout: Layout, fixed: int, input_: int, output: int) -> str:
+    """E.g. ``2K-H simple: sun L1 in, carrier L3 out, ring L0 fixed``."""
+    roles = role_names(layout)
+    graph = layout.graph.name or f"{layout.graph.links}-link"
+    return (f"{graph} {layout.name}: {roles[input_]} L{input_} in, {roles[output]} L{output} "
+            f"out, {roles[fixed]} L{fixed} fixed")
+
+
+def gear_teeth(layout: Layout, flat: np.ndarray) -> dict[str, np.ndarray]:
+    """``{"g0a": teeth, ...}`` (component ids of ``TrainGraph.to_model_dict``)."""
+    return {f"g{k}{'ab'[s]}": v for (k, s), v in sorted(layout.teeth(flat).items())}
+
+
+def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
+                  planets: int, mesh_efficiency: float) -> SynthesisRow | None:
+    """The best tooth set of one arrangement, its row (circulating power by one solve).
+
+    Tooth sets with an idle mesh (no loss: a coaxial link that is neither fixed, input
+    nor output turns freely, so the train is a smaller one with a passenger) and those the
+    solver cannot settle are left out; None when none is left."""
+    from powergraph.analyses.sweep import compile_sweep
+    from powergraph.kinematics import backdriven
+    from powergraph.model import model_from_dict
+    from powergraph.statics import solve
+
+    layout = graph_layouts(graph, teeth_range, planets)[hits.layout]
+    teeth = gear_teeth(layout, hits.flat)
+    doc = _document(layout, hits, {g: int(v[0]) for g, v in teeth.items()}, mesh_efficiency)
+    model = model_from_dict(doc)
+    paths = [f"components.{g}.teeth" for g in teeth]
+    values = {f"components.{g}.teeth": v for g, v in teeth.items()}
+    forward = compile_sweep(model, paths, backend="numeric")(values)
+    back = compile_sweep(backdriven(model), paths, backend="numeric")(values)
+    pv = _max_virtual_power(forward, mesh_efficiency)
+    back_eff = np.where(back.converged, back.efficiency, -np.inf)
+    eff = np.where(forward.converged, forward.efficiency, -np.inf)
+    working = forward.converged & ~_idle(forward, mesh_efficiency, len(graph.gear_pairs))
+    if not working.any():
+        return None
+    order = np.lexsort((np.nan_to_num(pv, nan=np.inf), -back_eff, -eff, ~working))
+    best = int(order[0])
+    chosen = {g: int(v[best]) for g, v in teeth.items()}
+    doc = _document(layout, hits, chosen, mesh_efficiency)
+    single = solve(model_from_dict(doc))
+    back_ok = bool(back.converged[best])
+    return SynthesisRow(
+        name=arrangement_name(layout, hits.fixed, hits.input, hits.output),
+        graph=graph.name or f"{graph.links}-link", layout=layout.name, fixed=hits.fixed,
+        input=hits.input, output=hits.output, teeth=chosen,
+        rings=tuple(f"g{k}{'ab'[s]}" for k, s in sorted(layout.internal.items())),
+        ratio=float(forward.ratio[best]), ratio_error=float(forward.ratio[best] / ratio - 1.0),
+        efficiency=float(forward.efficiency[best]),
+        self_locking=bool(forward.self_locking[best]),
+        backdrive_efficiency=float(back.efficiency[best]) if back_ok else None,
+        backdrive_self_locking=bool(back.self_locking[best]) if back_ok else None,
+        circulating_power=float(single.circulating_power),
+        max_virtual_power_ratio=None if np.isnan(pv[best]) else float(pv[best]),
+        meshes=len(graph.gear_pairs), input_power=float(forward.input_power[best]),
+        candidates=int(working.sum()), document=doc)
+
+
+def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficiency: float
+              ) -> dict[str, Any]:
+    pairs = {(int(g[1:-1]), "ab".index(g[-1])): z for g, z in teeth.items()}
+    name = arrangement_name(layout, hits.fixed, hits.input, hits.output)
+    return layout.graph.to_model_dict(frame=hits.fixed, inputs=(hits.input,),
+                                      outputs=(hits.output,), teeth=pairs,
+                                      internal=layout.internal,
+                                      mesh_efficiency=mesh_efficiency, name=name)
+
+
+def _idle(result, mesh_efficiency: float, meshes: int) -> np.ndarray:
+    """Some mesh (links ``0 .. meshes-1``; couplings are ideal) passes no power, detected
+    from its loss (ideal meshes cannot tell)."""
+    if mesh_efficiency >= 1.0 or meshes == 0:
+        return np.zeros(result.shape, dtype=bool)
+    smallest = np.min(np.stack([np.abs(np.asarray(result.losses[k])) for k in range(meshes)]),
+                      axis=0)
+    return ~(smallest > 1e-9 * np.abs(result.input_power))
+
+
+def _max_virtual_power(result, mesh_efficiency: float) -> np.ndarray:
+    """Largest mesh virtual power over input power (NaN when the meshes are ideal)."""
+    if mesh_efficiency >= 1.0 or not result.losses:
+        return np.full(result.shape, np.nan)
+    largest = np.max(np.stack([np.asarray(v) for v in result.losses.values()]), axis=0)
+    return largest / (1.0 - mesh_efficiency) / result.input_power
+
+
+def rank_key(row: SynthesisRow) -> tuple:
+    """Sort key: efficiency, back-driven efficiency (to 0.1 pp, higher first), circulating
+    power over input (to 0.1 %), meshes, largest virtual power, then a stable tiebreak."""
+    back = row.backdrive_efficiency if row.backdrive_efficiency is not None else -np.inf
+    circulating = row.circulating_power / row.input_power if row.input_power else 0.0
+    return (-round(row.efficiency, 3), -round(back, 3), round(circulating, 3), row.meshes,
+            row.max_virtual_power_ratio if row.max_virtual_power_ratio is not None else np.inf,
+            abs(row.ratio_error), row.name, tuple(sorted(row.teeth.items())))
+
+
+def signature(row: SynthesisRow) -> tuple:
+    """Rows equal in graph, figures and tooth multiset describe one train (an arrangement
+    and its mirror image, e.g. the sun/ring labels of a symmetric graph swapped)."""
+    return (row.graph, round(row.ratio, 9), round(row.efficiency, 9),
+            tuple(sorted(row.teeth.values())), row.meshes)

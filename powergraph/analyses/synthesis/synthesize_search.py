@@ -1,0 +1,218 @@
+"""The tooth-number search: closed-form speeds of every coaxial link, evaluated over grids.
+
+For each graph and each choice of fixed link, the Willis rows are solved once with sympy
+(:func:`powergraph.analyses.formula.equations.body_speeds`, the kinematic half of
+:func:`~powergraph.analyses.formula.derive_formulas`) with the meshes' Willis ratios
+``i_k`` as symbols, and lambdified: one numpy call gives the speed of every coaxial link
+for a whole array of tooth numbers, hence the ratio of every (input, output) choice. The
+grid of a layout (:mod:`~powergraph.analyses.synthesis.teeth`) already meets coaxiality,
+the neighbour condition and single-cluster assembly; the hits within the tolerance are
+then checked for the conditions that join several planets (assembly of a planet-planet
+cluster, the triangle of a double planet).
+
+Examples
+--------
+>>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+>>> speeds = speed_functions(CLASSICS["2K-H"])
+>>> fixed, others, fn = speeds[0]       # ring 0 fixed; others: sun 1, carrier 3
+>>> others
+(1, 3)
+>>> [float(w) for w in fn(-2.0, 4.0)]   # i_sun/planet = -2 (40/20), i_planet/ring = 4 (80/20)
+[1.0, 0.1111111111111111]
+"""
+from __future__ import annotations
+
+import copy
+import functools
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from powergraph.analyses.synthesis.graph import TrainGraph
+from powergraph.analyses.synthesis.teeth import Layout, assembles, layouts
+
+#: Grid points evaluated at once (bounds the memory of a search).
+SUB_CHUNK = 1 << 17
+
+
+@dataclass(frozen=True)
+class Hits:
+    """Tooth sets of one arrangement (graph, layout, fixed, input, output) within the
+    tolerance and feasible: ``flat`` indices into the layout's grid."""
+
+    graph: int
+    layout: int
+    fixed: int
+    input: int
+    output: int
+    flat: np.ndarray
+
+
+@functools.lru_cache(maxsize=64)
+def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Callable], ...]:
+    """Per fixed coaxial link: ``(fixed, others, fn)`` where ``fn(i_0, ..., i_G-1)`` gives
+    the speeds of ``others`` (the other coaxial links) over the speed of ``others[0]``."""
+    import sympy as sp
+
+    from powergraph.analyses.formula.equations import body_speeds
+    from powergraph.errors import PowerGraphError
+    from powergraph.kinematics import elements_of
+    from powergraph.model import model_from_dict
+
+    from powergraph.analyses.synthesis.teeth import structure
+
+    st = structure(graph)
+    if st is None:
+        return ()
+    symbols = [sp.Symbol(f"i_{k}") for k in range(len(graph.gear_pairs))]
+    out = []
+    for fixed in st.coaxial:
+        others = tuple(c for c in st.coaxial if c != fixed)
+        if len(others) < 2:
+            continue
+        try:
+            model = model_from_dict(_ratio_document(graph, fixed, others))
+            elements = elements_of(model)
+            willis = {el.link: symbols[el.link] if el.kind == "mesh" else sp.Integer(1)
+                      for el in elements}
+            speeds = body_speeds(model, elements, willis, model.body_of[f"L{others[0]}"])
+        except PowerGraphError:
+            continue
+        expressions = [speeds[model.body_of[f"L{c}"]] for c in others]
+        out.append((fixed, others, sp.lambdify(symbols, expressions, "numpy")))
+    return tuple(out)
+
+
+def _ratio_document(graph: TrainGraph, fixed: int, others: tuple[int, ...]) -> dict:
+    """The graph's model with each mesh's Willis ratio given (generic values)."""
+    teeth = {(k, s): 20 for k in range(len(graph.gear_pairs)) for s in (0, 1)}
+    doc = copy.deepcopy(graph.to_model_dict(frame=fixed, inputs=(others[0],),
+                                            outputs=(others[1],), teeth=teeth))
+    for component in doc["components"].values():
+        component.pop("teeth", None)
+    meshes = [link for link in doc["links"] if link["type"] == "mesh"]
+    for k, link in enumerate(meshes):
+        link["ratio"] = -1.37 - 0.71 * k if k % 2 == 0 else 2.93 + 0.53 * k
+    return doc
+
+
+@functools.lru_cache(maxsize=64)
+def graph_layouts(graph: TrainGraph, teeth: tuple[int, int], planets: int) -> tuple[Layout, ...]:
+    """:func:`~powergraph.analyses.synthesis.teeth.layouts`, cached per process."""
+    return tuple(layouts(graph, teeth, planets))
+
+
+def willis_ratios(layout: Layout, teeth: dict[tuple[int, int], np.ndarray]) -> list[np.ndarray]:
+    """``i_k = (w_a - w_c)/(w_b - w_c)``: ``-z_b/z_a`` external, ``+z_b/z_a`` internal."""
+    internal = layout.internal
+    return [(1.0 if k in internal else -1.0) * teeth[(k, 1)] / teeth[(k, 0)]
+            for k in range(len(layout.graph.gear_pairs))]
+
+
+def search_range(graph: TrainGraph, graph_index: int, layout_index: int, start: int, stop: int,
+                 ratio: float, tolerance: float, teeth: tuple[int, int], planets: int
+                 ) -> list[Hits]:
+    """Hits of one layout over the flat grid indices ``start .. stop - 1``."""
+    layout = graph_layouts(graph, teeth, planets)[layout_index]
+    found: dict[tuple[int, int, int], list[np.ndarray]] = {}
+    for low in range(start, stop, SUB_CHUNK):
+        flat = np.arange(low, min(stop, low + SUB_CHUNK), dtype=np.int64)
+        z = layout.teeth(flat)
+        i = willis_ratios(layout, z)
+        for fixed, others, fn in speed_functions(graph):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w = [np.broadcast_to(np.asarray(v, dtype=float), flat.shape)
+                     for v in fn(*i)]
+                for a, wa in zip(others, w):
+                    for b, wb in zip(others, w):
+                        if a == b:
+                            continue
+                        hit = np.abs(wa / wb / ratio - 1.0) <= tolerance
+                        if hit.any():
+                            found.setdefault((fixed, a, b), []).append(flat[hit])
+    hits = []
+    for (fixed, a, b), parts in found.items():
+        flat = np.concatenate(parts)
+        flat = flat[joint_conditions(layout, flat)]
+        if flat.size:
+            hits.append(Hits(graph_index, layout_index, fixed, a, b, flat))
+    return hits
+
+
+def joint_conditions(layout: Layout, flat: np.ndarray) -> np.ndarray:
+    """Conditions joining planets meshed with each other: the triangle of their axes
+    (``|D_a - D_b| < z_a + z_b < D_a + D_b`` in half-modules) and the cluster's assembly."""
+    st, graph = layout.structure, layout.graph
+    pp = [k for k, kind in enumerate(st.kinds) if kind == "pp"]
+    ok = np.ones(flat.shape, dtype=bool)
+    if not pp:
+        return ok
+    z = layout.teeth(flat)
+    centres = layout.centres(flat)
+    for k in pp:
+        u, v, _ = graph.gear_pairs[k]
+        if u in centres and v in centres:
+            reach = z[(k, 0)] + z[(k, 1)]
+            ok &= (np.abs(centres[u] - centres[v]) < reach) & (reach < centres[u] + centres[v])
+    for cluster in _clusters(layout):
+        coax, coefficients = _cluster_meshes(layout, cluster, z)
+        phased = any(st.phased(p) for p in cluster)
+        ok &= assembles(coax, coefficients, layout.planets, phased)
+    return ok
+
+
+def _clusters(layout: Layout) -> list[list[int]]:
+    """Planet links joined by planet-planet meshes (only those with such a mesh)."""
+    st, graph = layout.structure, layout.graph
+    joined: dict[int, set[int]] = {}
+    for k, (u, v, _) in enumerate(graph.gear_pairs):
+        if st.kinds[k] == "pp":
+            joined.setdefault(u, set()).add(v)
+            joined.setdefault(v, set()).add(u)
+    clusters, seen = [], set()
+    for p in sorted(joined):
+        if p in seen:
+            continue
+        group, stack = [], [p]
+        while stack:
+            q = stack.pop()
+            if q not in seen:
+                seen.add(q)
+                group.append(q)
+                stack.extend(joined[q])
+        clusters.append(sorted(group))
+    return clusters
+
+
+def _cluster_meshes(layout: Layout, cluster: list[int], z: dict) -> tuple[list, list]:
+    """Coaxial teeth and integer coefficients ``a_j`` of a planet cluster (see
+    :func:`~powergraph.analyses.synthesis.teeth.assembles`): each planet's turn is
+    ``num/den`` times the first one's, through the planet-planet meshes."""
+    st, graph = layout.structure, layout.graph
+    num = {cluster[0]: np.ones_like(z[next(iter(z))])}
+    den = {cluster[0]: np.ones_like(num[cluster[0]])}
+    changed = True
+    while changed:
+        changed = False
+        for k, (u, v, _) in enumerate(graph.gear_pairs):
+            if st.kinds[k] != "pp":
+                continue
+            for (p, sp_), (q, sq) in (((u, 0), (v, 1)), ((v, 1), (u, 0))):
+                if p in num and q not in num:  # z_p d_p = -z_q d_q (external mesh)
+                    num[q], den[q] = -num[p] * z[(k, sp_)], den[p] * z[(k, sq)]
+                    changed = True
+    common = np.prod([den[p] for p in cluster], axis=0)
+    coax, coefficients = [], []
+    internal = layout.internal
+    for k, (u, v, _) in enumerate(graph.gear_pairs):
+        if st.kinds[k] != "cp":
+            continue
+        side = st.coaxial_side[k]
+        planet = (u, v)[1 - side]
+        if planet not in cluster:
+            continue
+        sign = 1 if k in internal else -1
+        coax.append(z[(k, side)])
+        coefficients.append(sign * z[(k, 1 - side)] * num[planet] * (common // den[planet]))
+    return coax, coefficients

@@ -1,0 +1,160 @@
+"""``powergraph synthesize --ratio R [--tolerance 0.5%] [--max-links N] [--teeth 12:120]
+[--planets 3] [--mesh-efficiency 0.98] [--top K] [--json] [-o DIR]
+[--workers N | --scheduler dask://ADDRESS]``.
+
+Which trains give ratio R, with which teeth, ranked (docs/synthesis_ratio.md). Prints the
+``compare`` table of the best K; ``-o DIR`` also writes each one's model (``NN_name.yaml``)
+and power-flow diagram (``NN_name.png``).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from pathlib import Path
+
+from powergraph.cli.common import print_json
+from powergraph.errors import UsageError
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser(
+        "synthesize", help="find the trains (and teeth) that give a ratio, ranked",
+        description="Search the planetary trains of at most N links for integer teeth "
+                    "giving ratio R (coaxial, assemblable, planets clear of each other) "
+                    "and rank them by efficiency both ways, circulating power, meshes "
+                    "and mesh rolling.")
+    parser.add_argument("--ratio", required=True, metavar="R",
+                        help="input speed / output speed (negative: output reversed)")
+    parser.add_argument("--tolerance", default="0.5%", metavar="T",
+                        help="relative tolerance on the ratio, e.g. 0.5%% or 0.005 "
+                             "(default 0.5%%)")
+    parser.add_argument("--max-links", default="6", metavar="N",
+                        help="largest number of links (default 6)")
+    parser.add_argument("--teeth", default="12:120", metavar="LOW:HIGH",
+                        help="tooth numbers allowed (default 12:120)")
+    parser.add_argument("--planets", default="3", metavar="N",
+                        help="planets spaced equally (default 3)")
+    parser.add_argument("--mesh-efficiency", default="0.98", metavar="E",
+                        help="basic efficiency of every mesh (default 0.98)")
+    parser.add_argument("--top", default="10", metavar="K", help="rows shown (default 10)")
+    parser.add_argument("--max-grid", default="4000000", metavar="N",
+                        help="largest tooth grid of one layout searched (default 4000000)")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+    parser.add_argument("-o", "--output", metavar="DIR",
+                        help="write the best K models and their power-flow diagrams here")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--workers", metavar="N",
+                       help="run on a local Dask cluster of N worker processes")
+    where.add_argument("--scheduler", metavar="dask://ADDRESS",
+                       help="run on the Dask cluster of this scheduler")
+    parser.set_defaults(handler=run)
+
+
+def _number(text: str, option: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise UsageError(f"{option} {text}: not a number") from None
+    if not math.isfinite(value):
+        raise UsageError(f"{option} {text}: must be finite")
+    return value
+
+
+def _whole(text: str, option: str, low: int, high: int) -> int:
+    value = _number(text, option)
+    if not value.is_integer() or not low <= value <= high:
+        raise UsageError(f"{option} {text}: must be a whole number from {low} to {high}")
+    return int(value)
+
+
+def parse_tolerance(text: str) -> float:
+    """``0.5%`` -> 0.005; ``0.005`` -> 0.005.
+
+    >>> parse_tolerance("0.5%"), parse_tolerance("0.01")
+    (0.005, 0.01)
+    """
+    value = (_number(text[:-1], "--tolerance") / 100 if text.endswith("%")
+             else _number(text, "--tolerance"))
+    if not 0 < value < 1:
+        raise UsageError(f"--tolerance {text}: must be above 0 and below 100%")
+    return value
+
+
+def parse_teeth(text: str) -> tuple[int, int]:
+    """``12:120`` -> (12, 120).
+
+    >>> parse_teeth("12:120")
+    (12, 120)
+    """
+    match = re.fullmatch(r"\s*(\d+)\s*:\s*(\d+)\s*", text)
+    if not match:
+        raise UsageError(f"--teeth {text}: expected LOW:HIGH, e.g. 12:120")
+    low, high = int(match[1]), int(match[2])
+    if not 3 <= low < high <= 1000:
+        raise UsageError(f"--teeth {text}: need 3 <= LOW < HIGH <= 1000")
+    return low, high
+
+
+def run(args: argparse.Namespace) -> int:
+    ratio = _number(args.ratio, "--ratio")
+    if ratio == 0:
+        raise UsageError("--ratio 0: a ratio cannot be zero")
+    efficiency = _number(args.mesh_efficiency, "--mesh-efficiency")
+    if not 0 < efficiency <= 1:
+        raise UsageError(f"--mesh-efficiency {args.mesh_efficiency}: must be in (0, 1]")
+    options = dict(
+        tolerance=parse_tolerance(args.tolerance),
+        max_links=_whole(args.max_links, "--max-links", 3, 8),
+        teeth=parse_teeth(args.teeth), planets=_whole(args.planets, "--planets", 1, 64),
+        mesh_efficiency=efficiency, top=_whole(args.top, "--top", 1, 1000),
+        max_grid=_whole(args.max_grid, "--max-grid", 1, 10**12),
+        workers=_whole(args.workers, "--workers", 1, 1024) if args.workers else None,
+        scheduler=args.scheduler)
+    target = _output_dir(args.output) if args.output else None
+    if args.scheduler:
+        from powergraph.analyses.parallel import scheduler_address
+
+        scheduler_address(args.scheduler)   # a bad address fails before the search
+    from powergraph.analyses.synthesis.synthesize import synthesize
+
+    result = synthesize(ratio, **options)
+    if args.json:
+        print_json(result.to_dict())
+    else:
+        print(result.text_report())
+    if target is not None:
+        _write(result, target, quiet=args.json)
+    return 0
+
+
+def _output_dir(text: str) -> Path:
+    path = Path(text)
+    if path.exists() and not path.is_dir():
+        raise UsageError(f"-o {text}: exists and is not a folder")
+    if not path.exists() and not path.parent.exists():
+        raise UsageError(f"-o {text}: folder {str(path.parent)!r} does not exist")
+    return path
+
+
+def _write(result, target: Path, quiet: bool) -> None:
+    """Each row's model (YAML) and power-flow diagram (PNG), numbered by rank."""
+    import sys
+
+    import yaml
+
+    from powergraph.cli.common import new_figure, save_figure, write_atomically
+    from powergraph.model import model_from_dict
+    from powergraph.plot.power_flow import plot_power_flow
+    from powergraph.statics import solve
+
+    target.mkdir(exist_ok=True)
+    for rank, row in enumerate(result.rows, 1):
+        stem = f"{rank:02d}_" + re.sub(r"[^A-Za-z0-9]+", "_", row.name).strip("_")[:60]
+        document = row.model_document()
+        text = yaml.safe_dump(document, sort_keys=False, allow_unicode=True)
+        write_atomically(target / f"{stem}.yaml", lambda tmp: Path(tmp).write_text(text))
+        ax = plot_power_flow(solve(model_from_dict(document)), figure=new_figure())
+        save_figure(ax.figure, target / f"{stem}.png", dpi=110)
+        if not quiet:
+            print(f"wrote {target / stem}.yaml and .png", file=sys.stderr)
