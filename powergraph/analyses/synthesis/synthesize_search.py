@@ -25,7 +25,7 @@ from __future__ import annotations
 import copy
 import functools
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 
@@ -55,7 +55,6 @@ def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Call
     the speeds of ``others`` (the other coaxial links) over the speed of ``others[0]``."""
     import sympy as sp
 
-    from powergraph.analyses.formula.equations import body_speeds
     from powergraph.errors import PowerGraphError
     from powergraph.kinematics import elements_of
     from powergraph.model import model_from_dict
@@ -76,12 +75,30 @@ def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Call
             elements = elements_of(model)
             willis = {el.link: symbols[el.link] if el.kind == "mesh" else sp.Integer(1)
                       for el in elements}
-            speeds = body_speeds(model, elements, willis, model.body_of[f"L{others[0]}"])
+            speeds = _speeds(model, elements, willis, model.body_of[f"L{others[0]}"])
         except PowerGraphError:
             continue
         expressions = [speeds[model.body_of[f"L{c}"]] for c in others]
         out.append((fixed, others, sp.lambdify(symbols, expressions, "numpy")))
     return tuple(out)
+
+
+def _speeds(model: Any, elements: Any, willis: dict, input_body: str) -> dict:
+    """Every body's speed over the input's, from the train's symbolic Willis rows (the
+    formula package's one symbolic derivation)."""
+    from powergraph.analyses.formula.systems import solve_linear, train_systems
+    from powergraph.errors import ModelError
+
+    given = {model.frame_body: 0, input_body: 1}
+    systems = train_systems([b.id for b in model.bodies], [el.bodies for el in elements],
+                            [willis[el.link] for el in elements], [1] * len(elements),
+                            given, {}, [])
+    det = 0
+    if systems.speed_matrix.is_square:
+        det, solution = solve_linear(systems.speed_matrix, systems.speed_rhs)
+    if det == 0:
+        raise ModelError("the speeds are not fixed by one input")
+    return {**dict(zip(systems.free, solution)), **given}
 
 
 def _ratio_document(graph: TrainGraph, fixed: int, others: tuple[int, ...]) -> dict:
