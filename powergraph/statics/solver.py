@@ -24,10 +24,7 @@ from powergraph.statics.directions import (
 from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
 from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
-from powergraph.statics.search import Statics, refine, statics_of
-
-#: Unknowns spanning more than this range (smallest/largest) are re-solved scaled.
-WIDE_RANGE = 1e-6
+from powergraph.statics.search import Statics, statics_of
 
 
 def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowResult:
@@ -77,7 +74,7 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     st = statics_of(model, elements, loads, rel)
 
     def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        eq = _equilibrium(model, elements, loads, factors, st)
+        eq = _equilibrium(model, elements, loads, factors, kin)
         return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
                                        model.frame_body)
 
@@ -99,29 +96,17 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
 
 
 def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
-                 factors: np.ndarray, st: Statics) -> Equilibrium:
-    """The torque balance; re-solved scaled when its unknowns span many decades, so each
-    is accurate relative to itself (a long chain's last torque, tiny efficiencies)."""
-    eq = solve_equilibrium(model, elements, loads, factors)
-    values = np.abs(np.concatenate([eq.forces, [eq.external[b] for b in loads.unknown]]))
-    if eq.indeterminate or not values.size or \
-            np.min(values, initial=np.inf, where=values > 0) > WIDE_RANGE * np.max(values):
-        return eq
-    refined = refine(st, factors, np.concatenate([eq.forces,
-                                                  [eq.external[b] for b in loads.unknown]]))
-    if refined is None:
-        return eq
-    n_el = len(elements)
-    external = dict(eq.external)
-    external.update({b: float(refined[n_el + j]) for j, b in enumerate(loads.unknown)})
-    return dataclasses.replace(eq, forces=refined[:n_el], external=external)
+                 factors: np.ndarray, kin: Kinematics) -> Equilibrium:
+    """The torque balance, solved scaled so each force and torque is accurate relative to
+    itself (a long chain's last torque, tiny efficiencies)."""
+    return solve_equilibrium(model, elements, loads, factors, kin.body_speeds)
 
 
 def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
               factors: np.ndarray, st: Statics, passes: int,
               search: DirectionSearch | None = None) -> PowerFlowResult:
     """The result for consistent factors: forces, each element's driver, losses."""
-    eq = _equilibrium(model, elements, loads, factors, st)
+    eq = _equilibrium(model, elements, loads, factors, kin)
     scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
     pattern = pattern_of(eq.forces, st.rel, scales)
     flows = tuple(_element_flow(model, el, force, f, code, kin)
@@ -137,7 +122,7 @@ def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads
     rest = dataclasses.replace(
         kin, body_speeds=MappingProxyType({b: 0.0 for b in kin.body_speeds}))
     factors = np.ones(len(elements))
-    eq = solve_equilibrium(model, elements, loads, factors)
+    eq = solve_equilibrium(model, elements, loads, factors, kin.body_speeds)
     flows = tuple(dataclasses.replace(_element_flow(model, el, force, 1.0, 0, rest),
                                       carrier_frame_power=0.0, loss=0.0)
                   for el, force in zip(elements, eq.forces))
