@@ -130,12 +130,34 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     return out
 
 
+def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,
+                        guess: np.ndarray | None) -> np.ndarray | None:
+    """A square balance with the unknown external torques eliminated first: each one
+    appears in its own body's row only, so the other rows fix the forces (solved scaled)
+    and its row then gives it. None when that part is not regular (or two unknown torques
+    share a body)."""
+    unknown_rows = system.rows[system.cols >= n_el]
+    if len(np.unique(unknown_rows)) != system.shape[1] - n_el:
+        return None
+    others = np.setdiff1d(np.arange(system.shape[0]), unknown_rows)
+    forces_part = system.part(others, np.arange(n_el))
+    solved = solve_square(forces_part, rhs[others], None if guess is None else guess[:n_el])
+    if not solved.regular:
+        return None
+    x = np.zeros(system.shape[1])
+    x[:n_el] = solved.x
+    element_torques = system.part(np.arange(system.shape[0]), np.arange(n_el)).dot(solved.x)
+    order = system.cols[system.cols >= n_el]
+    x[order] = rhs[unknown_rows] - element_torques[unknown_rows]
+    return x
+
+
 def _solve(system: Triplets, rhs: np.ndarray, n_el: int, loads: Loads,
            guess: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
     if system.shape[0] == system.shape[1]:
-        solved = solve_square(system, rhs, guess)
-        if solved.regular:
-            return solved.x, False
+        x = _solve_forces_first(system, rhs, n_el, guess)
+        if x is not None:
+            return x, False
     matrix = system.dense()
     _, s, vt = np.linalg.svd(equilibrated(matrix))
     rank = int(np.sum(s > SVD_RTOL * max(1.0, s[0]))) if s.size else 0
