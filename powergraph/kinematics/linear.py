@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 #: Systems with at least this many unknowns are solved with scipy.sparse.
-SPARSE_FROM = 200
+SPARSE_FROM = 100
 #: None: choose by size; "dense" or "sparse": force that path (tests).
 PATH: str | None = None
 #: A scaled system whose condition number reaches this is singular.
@@ -263,12 +263,21 @@ def matching(t: Triplets) -> np.ndarray:
 
 
 def _augmenting_paths(t: Triplets) -> np.ndarray:
-    """Kuhn's augmenting-path matching (small systems)."""
+    """A greedy matching completed by Kuhn's augmenting paths (small systems)."""
     adjacency: list[list[int]] = [[] for _ in range(t.shape[0])]
     for r, c in zip(t.rows.tolist(), t.cols.tolist()):
         adjacency[r].append(c)
     row_of = [-1] * t.shape[1]
-    for start in range(t.shape[0]):
+    degree = np.bincount(t.cols, minlength=t.shape[1]).tolist()
+    unmatched = []
+    for row in sorted(range(t.shape[0]), key=lambda r: len(adjacency[r])):
+        # greedy first: the free column with the fewest entries
+        free = [c for c in adjacency[row] if row_of[c] < 0]
+        if free:
+            row_of[min(free, key=degree.__getitem__)] = row
+        else:
+            unmatched.append(row)
+    for start in unmatched:
         seen: set[int] = set()
         # iterative depth-first search for an augmenting path from row ``start``
         stack = [(start, iter(adjacency[start]))]
