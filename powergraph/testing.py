@@ -61,12 +61,18 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
             continue
         inflow = sum(d["power"] for _, _, d in graph.in_edges(node, data=True))
         outflow = sum(d["power"] for _, _, d in graph.out_edges(node, data=True))
-        _close(inflow, outflow, scale, rtol, f"flow balance at {node!r} (frame {frame})")
+        # seen from a fast body, a node's arrows can exceed the train's powers by far (a
+        # 5^20 reducer's housing torque times the input speed): its own round-off then
+        # sets the tolerance, never below the train's scale
+        _close(inflow, outflow, max(scale, inflow + outflow), rtol,
+               f"flow balance at {node!r} (frame {frame})")
     fed = sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (MOTOR, GROUND)) \
         - sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (MOTOR, GROUND))
     taken = sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (GENERATOR, LOSS)) \
         - sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (GENERATOR, LOSS))
-    _close(fed, taken, scale, rtol, f"sources vs sinks (frame {frame})")
+    moved = sum(d["power"] for u, v, d in graph.edges(data=True)
+                if u.split(" ")[0] in sources or v.split(" ")[0] in sources)
+    _close(fed, taken, max(scale, moved), rtol, f"sources vs sinks (frame {frame})")
 
 
 def assert_kinematics(result: PowerFlowResult, rtol: float = RTOL) -> None:

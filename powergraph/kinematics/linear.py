@@ -23,6 +23,7 @@ ratios) does it fall back to the singular values of the equilibrated dense matri
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -155,30 +156,30 @@ def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
         return Solved(np.zeros(0), 1.0)
     sparse = use_sparse(n)
     if guess is None:
-        x, _ = _factor_solve(t, rhs, sparse, condition=False)
+        x, _ = _factor_solve(t, rhs, sparse)
     else:
-        x, _ = _scaled_solve(t, rhs, column_scales(t, np.abs(guess), rhs), sparse, False)
+        x, _ = _scaled_solve(t, rhs, column_scales(t, np.abs(guess), rhs), sparse)
     failed = Solved(np.full(n, np.nan), np.inf)
     if x is None or not np.all(np.isfinite(x)):
         return failed
     d = column_scales(t, x, rhs)
     for k in range(MAX_PASSES):
-        x, condition = _scaled_solve(t, rhs, d, sparse, condition=True)
+        x, condition = _scaled_solve(t, rhs, d, sparse)
         if x is None or not np.all(np.isfinite(x)):
             return failed
         following = column_scales(t, x, rhs)
         if k + 1 >= passes and np.all(np.abs(np.log(following / d)) < np.log(SETTLED)):
             break
         d = following
-    return Solved(x, condition)
+    return Solved(x, condition())
 
 
-def _scaled_solve(t: Triplets, rhs: np.ndarray, d: np.ndarray, sparse: bool,
-                  condition: bool) -> tuple[np.ndarray | None, float]:
+def _scaled_solve(t: Triplets, rhs: np.ndarray, d: np.ndarray,
+                  sparse: bool) -> tuple[np.ndarray | None, Callable[[], float]]:
     """Solve with the columns scaled by ``d`` and each row by its largest entry."""
     r = t.row_terms(d)
     r[r == 0] = 1.0
-    y, cond = _factor_solve(t.scaled(r, d), rhs / r, sparse, condition)
+    y, cond = _factor_solve(t.scaled(r, d), rhs / r, sparse)
     return (None if y is None else d * y), cond
 
 
@@ -200,28 +201,34 @@ def column_scales(t: Triplets, x: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     return d
 
 
-def _factor_solve(t: Triplets, rhs: np.ndarray, sparse: bool,
-                  condition: bool) -> tuple[np.ndarray | None, float]:
-    """Solve ``t x = rhs``; the 2-norm (dense) or estimated 1-norm (sparse) condition
-    number when asked. None when the factorisation finds the matrix exactly singular."""
+def _factor_solve(t: Triplets, rhs: np.ndarray,
+                  sparse: bool) -> tuple[np.ndarray | None, Callable[[], float]]:
+    """Solve ``t x = rhs``; also a function giving the 2-norm (dense) or estimated 1-norm
+    (sparse) condition number. None when the factorisation finds the matrix exactly
+    singular."""
     if not sparse:
         matrix = t.dense()
         try:
             x = np.linalg.solve(matrix, rhs)
         except np.linalg.LinAlgError:
-            return None, np.inf
-        return x, (float(np.linalg.cond(matrix)) if condition else np.inf)
+            return None, _infinite
+        return x, lambda: float(np.linalg.cond(matrix))
     from scipy.sparse.linalg import splu
 
     try:
         lu = splu(t.csc())
     except RuntimeError:  # exactly singular
-        return None, np.inf
-    x = lu.solve(rhs)
-    if not condition:
-        return x, np.inf
-    norm = float(np.bincount(t.cols, weights=np.abs(t.values), minlength=t.shape[1]).max())
-    return x, norm * _inverse_norm1(lu.solve, lambda b: lu.solve(b, trans="T"), t.shape[0])
+        return None, _infinite
+
+    def condition() -> float:
+        norm = float(np.bincount(t.cols, weights=np.abs(t.values), minlength=t.shape[1]).max())
+        return norm * _inverse_norm1(lu.solve, lambda b: lu.solve(b, trans="T"), t.shape[0])
+
+    return lu.solve(rhs), condition
+
+
+def _infinite() -> float:
+    return np.inf
 
 
 def _inverse_norm1(solve, solve_transposed, n: int) -> float:

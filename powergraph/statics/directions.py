@@ -94,7 +94,10 @@ def agrees(assumed: Pattern, found: Pattern) -> bool:
 
 def settle(solve: ForceSolver, elements: tuple[Element, ...],
            rel: np.ndarray) -> tuple[Pattern | None, int, list[Pattern]]:
-    """Iterate ``pattern -> factors -> forces -> pattern`` to a self-consistent pattern.
+    """Iterate ``pattern -> factors -> forces -> pattern`` to a self-consistent pattern:
+    one whose forces pass power the assumed way in every element (:func:`agrees`; an
+    element found passing nothing, e.g. past the point where a very long lossy chain's
+    power underflows, agrees with its assumed driver).
 
     Parameters
     ----------
@@ -124,7 +127,7 @@ def settle(solve: ForceSolver, elements: tuple[Element, ...],
     for passes in range(1, MAX_PASSES + 1):
         forces, scales = solve(factors_of(pattern, elements))
         following = pattern_of(forces, rel, scales)
-        if following == pattern:
+        if agrees(pattern, following):
             return pattern, passes, history
         if following in history:
             return None, passes, history
