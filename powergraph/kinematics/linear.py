@@ -132,7 +132,7 @@ class Solved:
 
 
 def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
-                 passes: int = 2) -> Solved:
+                 passes: int = 1) -> Solved:
     """Solve a square system, re-solved at least ``passes`` times scaled by its own
     solution, until the scales settle (each pass gains about 15 decades of relative
     accuracy on an unknown the previous scaling misjudged; at most ``MAX_PASSES``).

@@ -15,7 +15,7 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.errors import KinematicsError
-from powergraph.kinematics.elements import Element, element_stencil, elements_of
+from powergraph.kinematics.elements import Element, body_columns, element_stencil, elements_of
 from powergraph.kinematics.linear import (
     Triplets,
     equilibrated,
@@ -76,8 +76,7 @@ def constraint_triplets(model: Model, elements: tuple[Element, ...] | None = Non
     n_el = len(elements)
     ratio = np.array([el.ratio for el in elements], dtype=float)
     on_a, on_b, on_c = element_stencil(ratio)
-    bodies = np.array([[column[b] for b in el.bodies] for el in elements],
-                      dtype=np.int64).reshape(n_el, 3)
+    bodies = body_columns(elements, column).astype(np.int64).reshape(n_el, 3)
     rows = np.concatenate([np.tile(np.arange(n_el), 3), [n_el]])
     cols = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], [column[model.frame_body]]])
     values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c, [1.0]])
@@ -95,7 +94,8 @@ def degrees_of_freedom(model: Model) -> int:
 
 
 def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
-                 slips: Mapping[int, float] | None = None) -> Kinematics:
+                 slips: Mapping[int, float] | None = None,
+                 elements: tuple[Element, ...] | None = None) -> Kinematics:
     """Solve every body's speed.
 
     Parameters
@@ -107,6 +107,8 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     slips : mapping, optional
         ``{link index: s}`` added to that mesh's Willis row (used for backlash and
         fluctuation sensitivities; 0 in a normal solve).
+    elements : tuple of Element, optional
+        ``elements_of(model)``, when the caller has it already.
 
     Returns
     -------
@@ -130,7 +132,7 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     >>> kin.speed("2"), kin.ratio
     (-4.0, -2.5)
     """
-    elements = elements_of(model)
+    elements = elements_of(model) if elements is None else elements
     system = constraint_triplets(model, elements)
     n_bodies = len(model.bodies)
     dof = n_bodies - rank(system)

@@ -18,6 +18,7 @@ from typing import Callable
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil
+from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
 
 #: A driver code per element: +1 gear a drives, -1 gear b drives, 0 no power passes.
 Pattern = tuple[int, ...]
@@ -44,7 +45,7 @@ def relative_speeds(elements: tuple[Element, ...], kin: Kinematics) -> np.ndarra
     array([0., 0.])
     """
     speeds = kin.body_speeds
-    w = np.array([[speeds[b] for b in e.bodies] for e in elements], dtype=float).reshape(-1, 3)
+    w = body_columns(elements, speeds).astype(float).reshape(-1, 3)
     rel = w[:, 0] - w[:, 2]
     return np.where(np.abs(rel) <= SPEED_NOISE * np.abs(w).max(axis=1, initial=0.0), 0.0, rel)
 
@@ -57,8 +58,11 @@ def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.
     touches nothing else. A force far below this scale is round-off: nothing passes.
     """
     index: dict[str, int] = {}
-    bodies = np.array([[index.setdefault(b, len(index)) for b in e.bodies] for e in elements],
-                      dtype=np.int64).reshape(-1, 3)
+    for triple in map(ELEMENT_BODIES, elements):
+        for b in triple:
+            if b not in index:
+                index[b] = len(index)
+    bodies = body_columns(elements, index).astype(np.int64).reshape(-1, 3)
     outside = np.array([index.setdefault(b, len(index)) for b in external], dtype=np.int64)
     ratio = np.array([e.ratio for e in elements], dtype=float)
     stencil = element_stencil(ratio, np.asarray(factors, dtype=float))

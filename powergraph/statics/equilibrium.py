@@ -14,6 +14,7 @@ import numpy as np
 
 from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
+from powergraph.kinematics.elements import body_columns
 from powergraph.kinematics.linear import (
     SVD_RTOL,
     Triplets,
@@ -79,8 +80,7 @@ def equilibrium_triplets(model: Model, elements: tuple[Element, ...], loads: Loa
     n_el, n_ext = len(elements), len(loads.unknown)
     ratio = np.array([el.ratio for el in elements], dtype=float)
     on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
-    bodies = np.array([[row[b] for b in el.bodies] for el in elements],
-                      dtype=np.int64).reshape(n_el, 3)
+    bodies = body_columns(elements, row).astype(np.int64).reshape(n_el, 3)
     k = np.arange(n_el)
     rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2],
                            [row[b] for b in loads.unknown]])
@@ -90,13 +90,14 @@ def equilibrium_triplets(model: Model, elements: tuple[Element, ...], loads: Loa
 
 
 def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
-                      factors: np.ndarray,
-                      speeds: Mapping[str, float] | None = None) -> Equilibrium:
+                      factors: np.ndarray, speeds: Mapping[str, float] | None = None,
+                      guess: np.ndarray | None = None) -> Equilibrium:
     """Solve the torque balance for element factors ``factors`` (``f`` per element).
 
     ``speeds`` (body speeds, optional) give the expected size of each unknown before the
     solve: a force passes about the train's power at its relative speed, an external
-    torque about that power at its body's speed (:func:`expected_sizes`).
+    torque about that power at its body's speed (:func:`expected_sizes`). ``guess``, the
+    forces then the unknown external torques of a previous solve, is a better hint still.
 
     A square balance is solved scaled (each force and torque accurate relative to itself,
     :func:`powergraph.kinematics.linear.solve_square`) and is determined when its scaled
@@ -110,7 +111,8 @@ def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
     rhs = np.zeros(len(model.bodies))
     for body, torque in loads.given.items():
         rhs[row[body]] -= torque
-    guess = None if speeds is None else expected_sizes(elements, loads, speeds)
+    if guess is None and speeds is not None:
+        guess = expected_sizes(elements, loads, speeds)
     solution, indeterminate = _solve(system, rhs, n_el, loads, guess)
     external = dict(loads.given)
     external.update({body: float(solution[n_el + j]) for j, body in enumerate(loads.unknown)})
@@ -123,8 +125,9 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     train's power over the relative speed of the element or the speed of the body; 0
     where that speed is 0 (the solve then takes the size the neighbours give)."""
     power = max((abs(t * speeds[b]) for b, t in loads.given.items()), default=0.0) or 1.0
-    rel = np.abs(np.array([speeds[e.body_a] - speeds[e.body_c] for e in elements] +
-                          [speeds[b] for b in loads.unknown], dtype=float))
+    w = body_columns(elements, speeds).astype(float).reshape(len(elements), 3)
+    rel = np.abs(np.concatenate([w[:, 0] - w[:, 2],
+                                 np.array([speeds[b] for b in loads.unknown], dtype=float)]))
     out = np.zeros(len(rel))
     np.divide(power, rel, out=out, where=rel > 0)
     return out

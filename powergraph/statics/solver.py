@@ -12,7 +12,8 @@ from typing import Mapping
 
 import numpy as np
 
-from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
+from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
+from powergraph.kinematics.elements import body_columns
 from powergraph.model.spec import Model
 from powergraph.statics.directions import (
     factors_of,
@@ -66,22 +67,24 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
     """
     if needs_friction(model):
         return solve_with_friction(model, lambda fixed: solve(fixed, speeds))
-    kin = solve_speeds(model, speeds)
     elements = elements_of(model)
+    kin = solve_speeds(model, speeds, elements=elements)
     loads = loads_of(model, kin)
     rel = relative_speeds(elements, kin)
 
     st = statics_of(model, elements, loads, rel)
 
     def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        eq = _equilibrium(model, elements, loads, factors, kin)
+        eq = _equilibrium(model, elements, loads, factors, kin, last)
+        last[:] = [eq]
         return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
                                        model.frame_body)
 
+    last: list[Equilibrium] = []    # the previous solve: its sizes hint the next one
     pattern, passes, visited = settle(forces, elements, rel)
     if pattern is not None:
         factors = factors_of(pattern, elements)
-        return _assemble(model, kin, elements, loads, factors, st, passes)
+        return _assemble(model, kin, elements, loads, factors, st, passes, last)
     from powergraph.statics.locking import decide
 
     decision = decide(model, elements, loads, rel, forces, visited)
@@ -89,28 +92,33 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
                              complete=decision.complete)
     if decision.chosen is not None:
         return _assemble(model, kin, elements, loads, decision.chosen.factors, st, passes,
-                         search)
+                         search=search)
     lock = Lock(meshes=tuple(elements[k].link for k in decision.locking),
                 reasons=decision.reasons, asked=kin)
     return _at_rest(model, kin, elements, loads, passes, search, lock)
 
 
 def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
-                 factors: np.ndarray, kin: Kinematics) -> Equilibrium:
+                 factors: np.ndarray, kin: Kinematics,
+                 last: list[Equilibrium] = ()) -> Equilibrium:
     """The torque balance, solved scaled so each force and torque is accurate relative to
-    itself (a long chain's last torque, tiny efficiencies)."""
-    return solve_equilibrium(model, elements, loads, factors, kin.body_speeds)
+    itself (a long chain's last torque, tiny efficiencies); the previous solve, when there
+    is one, tells the size of each unknown."""
+    guess = None
+    if last:
+        guess = np.concatenate([last[0].forces, [last[0].external[b] for b in loads.unknown]])
+    return solve_equilibrium(model, elements, loads, factors, kin.body_speeds, guess)
 
 
 def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
               factors: np.ndarray, st: Statics, passes: int,
-              search: DirectionSearch | None = None) -> PowerFlowResult:
+              last: list[Equilibrium] = (), search: DirectionSearch | None = None
+              ) -> PowerFlowResult:
     """The result for consistent factors: forces, each element's driver, losses."""
-    eq = _equilibrium(model, elements, loads, factors, kin)
+    eq = _equilibrium(model, elements, loads, factors, kin, last)
     scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
     pattern = pattern_of(eq.forces, st.rel, scales)
-    flows = tuple(_element_flow(model, el, force, f, code, kin)
-                  for el, force, f, code in zip(elements, eq.forces, factors, pattern))
+    flows = _element_flows(elements, eq.forces, factors, pattern, kin)
     return _result(model, kin, flows, eq, passes, search)
 
 
@@ -123,30 +131,42 @@ def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads
         kin, body_speeds=MappingProxyType({b: 0.0 for b in kin.body_speeds}))
     factors = np.ones(len(elements))
     eq = solve_equilibrium(model, elements, loads, factors, kin.body_speeds)
-    flows = tuple(dataclasses.replace(_element_flow(model, el, force, 1.0, 0, rest),
-                                      carrier_frame_power=0.0, loss=0.0)
-                  for el, force in zip(elements, eq.forces))
+    flows = tuple(dataclasses.replace(flow, carrier_frame_power=0.0, loss=0.0)
+                  for flow in _element_flows(elements, eq.forces, factors,
+                                             [0] * len(elements), rest))
     result = _result(model, rest, flows, eq, passes, search)
     return dataclasses.replace(result, lock=lock)
 
 
-def _element_flow(model: Model, el: Element, force: float, factor: float, code: int,
-                  kin: Kinematics) -> ElementFlow:
-    torques: dict[str, float] = {}
-    parts = [(el.body_a, force), (el.body_b, -el.ratio * factor * force)]
-    if el.kind == "mesh" or factor != 1.0:  # an ideal coupling does not touch the frame
-        parts.append((el.body_c, (el.ratio * factor - 1.0) * force))
-    for body, torque in parts:
-        torques[body] = torques.get(body, 0.0) + float(torque)
-    rel_a = kin.body_speeds[el.body_a] - kin.body_speeds[el.body_c]
-    power_a = -force * rel_a                # fed in by gear a, carrier frame
-    loss = power_a * (1.0 - factor)         # = -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
-    virtual = power_a if code > 0 else (-power_a * factor if code < 0 else 0.0)
-    driver = el.a if code > 0 else (el.b if code < 0 else None)
-    return ElementFlow(link=el.link, kind=el.kind, a=el.a, b=el.b, carrier=el.carrier,
-                       ratio=el.ratio, efficiency=el.efficiency, force=float(force),
-                       factor=float(factor), torques=MappingProxyType(torques), driver=driver,
-                       carrier_frame_power=float(virtual), loss=float(loss))
+def _element_flows(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
+                   pattern, kin: Kinematics) -> tuple[ElementFlow, ...]:
+    """Each element's torques (its stencil times its force), carrier-frame power, driver
+    and loss."""
+    ratio = np.array([el.ratio for el in elements], dtype=float)
+    factors = np.asarray(factors, dtype=float)
+    forces = np.asarray(forces, dtype=float)
+    on_a, on_b, on_c = element_stencil(ratio, factors)
+    w = body_columns(elements, kin.body_speeds).astype(float).reshape(len(elements), 3)
+    power_a = -forces * (w[:, 0] - w[:, 2])   # fed in by gear a, carrier frame
+    loss = power_a * (1.0 - factors)          # = -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
+    code = np.asarray(pattern, dtype=int).reshape(len(elements))
+    virtual = np.where(code > 0, power_a, np.where(code < 0, -power_a * factors, 0.0))
+    columns = zip(elements, (on_a * forces).tolist(), (on_b * forces).tolist(),
+                  (on_c * forces).tolist(), forces.tolist(), factors.tolist(), code.tolist(),
+                  virtual.tolist(), loss.tolist())
+    out = []
+    for el, t_a, t_b, t_c, force, factor, c, power, lost in columns:
+        torques: dict[str, float] = {el.body_a: 0.0 + t_a}
+        torques[el.body_b] = torques.get(el.body_b, 0.0) + t_b
+        if el.kind == "mesh" or factor != 1.0:  # an ideal coupling does not touch the frame
+            torques[el.body_c] = torques.get(el.body_c, 0.0) + t_c
+        out.append(ElementFlow(
+            link=el.link, kind=el.kind, a=el.a, b=el.b, carrier=el.carrier, ratio=el.ratio,
+            efficiency=el.efficiency, force=force, factor=factor,
+            torques=MappingProxyType(torques),
+            driver=el.a if c > 0 else (el.b if c < 0 else None),
+            carrier_frame_power=power, loss=lost))
+    return tuple(out)
 
 
 def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: Equilibrium,

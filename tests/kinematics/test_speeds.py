@@ -1,4 +1,5 @@
-"""Kinematics alone: REFERENCE §B speeds, DOF counts, slips, and derived operating cases."""
+"""Kinematics alone: the RV-40E speeds (Wang 2021, Table 1 train), DOF counts, slips, and derived
+operating cases."""
 from __future__ import annotations
 
 from pathlib import Path
