@@ -76,11 +76,11 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
 
     def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         eq = _equilibrium(model, elements, loads, factors, kin, last)
-        last[:] = [eq]
+        last[:] = [eq, np.array(factors, dtype=float)]
         return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
                                        model.frame_body)
 
-    last: list[Equilibrium] = []    # the previous solve: its sizes hint the next one
+    last: list = []    # the previous solve and its factors: its sizes hint the next one
     pattern, passes, visited = settle(forces, elements, rel)
     if pattern is not None:
         factors = factors_of(pattern, elements)
@@ -100,19 +100,23 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None) -> PowerFlowR
 
 def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
                  factors: np.ndarray, kin: Kinematics,
-                 last: list[Equilibrium] = ()) -> Equilibrium:
+                 last: list = ()) -> Equilibrium:
     """The torque balance, solved scaled so each force and torque is accurate relative to
     itself (a long chain's last torque, tiny efficiencies); the previous solve, when there
-    is one, tells the size of each unknown."""
+    is one (``[equilibrium, factors]``), tells the size of each unknown, or is the answer
+    when its factors are the same."""
     guess = None
     if last:
-        guess = np.concatenate([last[0].forces, [last[0].external[b] for b in loads.unknown]])
+        previous, previous_factors = last
+        if np.array_equal(previous_factors, factors):
+            return previous
+        guess = np.concatenate([previous.forces, [previous.external[b] for b in loads.unknown]])
     return solve_equilibrium(model, elements, loads, factors, kin.body_speeds, guess)
 
 
 def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
               factors: np.ndarray, st: Statics, passes: int,
-              last: list[Equilibrium] = (), search: DirectionSearch | None = None
+              last: list = (), search: DirectionSearch | None = None
               ) -> PowerFlowResult:
     """The result for consistent factors: forces, each element's driver, losses."""
     eq = _equilibrium(model, elements, loads, factors, kin, last)
