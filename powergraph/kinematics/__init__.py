@@ -1,4 +1,4 @@
-"""Kinematics layer: bodies' speeds from Willis' relations (DESIGN §2)."""
+"""Kinematics layer: bodies' speeds from Willis' relations (docs/theory.md)."""
 from __future__ import annotations
 
 from powergraph.kinematics.elements import Element, element_stencil, elements_of, willis_ratio

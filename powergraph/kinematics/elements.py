@@ -7,7 +7,10 @@ mesh's (the loss torque reacts on the frame).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TypeVar
+from operator import attrgetter
+from typing import Mapping, TypeVar
+
+import numpy as np
 
 from powergraph.model.spec import Link, Model
 
@@ -75,7 +78,7 @@ def element_stencil(ratio: Value, factor: Value | float = 1.0) -> tuple[float, V
 
 
 def willis_ratio(link: Link, model: Model) -> float:
-    """Willis' quotient ``(w_a - w_c)/(w_b - w_c)`` of a mesh (SPEC §1).
+    """Willis' quotient ``(w_a - w_c)/(w_b - w_c)`` of a mesh (docs/format.md).
 
     ``-z_b/z_a`` for an external pair, ``+z_b/z_a`` when either gear is internal, or the
     link's ``ratio`` when given.
@@ -113,3 +116,19 @@ def elements_of(model: Model) -> tuple[Element, ...]:
                            body_c=model.body_of[carrier], ratio=ratio,
                            efficiency=link.efficiency))
     return tuple(out)
+
+
+#: An element's three bodies (gear a, gear b, carrier) as a tuple, fast.
+ELEMENT_BODIES = attrgetter("body_a", "body_b", "body_c")
+
+
+def body_columns(elements: tuple[Element, ...], index: Mapping[str, object]) -> np.ndarray:
+    """``index[body]`` of each element's gear a, gear b and carrier: an ``(n, 3)`` array
+    (indices, or speeds when ``index`` maps bodies to speeds).
+
+    >>> e = Element(0, "mesh", "1", "2", "0", "1", "2", "0", -2.0, 0.9)
+    >>> body_columns((e,), {"0": 0, "1": 1, "2": 2}).tolist()
+    [[1, 2, 0]]
+    """
+    flat = [index[b] for triple in map(ELEMENT_BODIES, elements) for b in triple]
+    return np.array(flat).reshape(len(elements), 3)

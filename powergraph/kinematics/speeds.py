@@ -1,9 +1,10 @@
-"""Speeds of every body from the given input speeds (DESIGN §2).
+"""Speeds of every body from the given input speeds (docs/theory.md).
 
 One linear row per mesh ``(w_a - w_c) - i (w_b - w_c) = s`` (``s`` = 0, or a slip used by
 sensitivity analyses), one per coupling ``w_a - w_b = 0``, and ``w_frame = 0``.
-DOF = bodies - rank. A rank defect or an inconsistency is a KinematicsError that says
-what is wrong, never a NaN.
+DOF = bodies - rank (decided structurally, confirmed on the scaled system, see
+:mod:`powergraph.kinematics.linear`). A rank defect or an inconsistency is a
+KinematicsError that says what is wrong, never a NaN.
 """
 from __future__ import annotations
 
@@ -14,10 +15,17 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.errors import KinematicsError
-from powergraph.kinematics.elements import Element, elements_of
+from powergraph.kinematics.elements import Element, body_columns, element_stencil, elements_of
+from powergraph.kinematics.linear import (
+    Triplets,
+    equilibrated,
+    matching,
+    rank,
+    solve_square,
+    SVD_RTOL,
+    svd_rank,
+)
 from powergraph.model.spec import Model
-
-_RTOL = 1e-10
 
 
 @dataclass(frozen=True)
@@ -60,34 +68,34 @@ class Kinematics:
                 "speeds": {c: self.body_speeds[b] for c, b in self.body_of.items()}}
 
 
-def constraint_matrix(model: Model, elements: tuple[Element, ...] | None = None) -> np.ndarray:
-    """Rows: one per element (Willis/coupling), then ``w_frame = 0``; columns: bodies."""
+def constraint_triplets(model: Model, elements: tuple[Element, ...] | None = None) -> Triplets:
+    """The constraint rows as triplets: one row per element (its stencil, factor 1),
+    then ``w_frame = 0``; columns: bodies in ``model.bodies`` order."""
     elements = elements_of(model) if elements is None else elements
     column = {body.id: j for j, body in enumerate(model.bodies)}
-    rows = np.zeros((len(elements) + 1, len(model.bodies)))
-    for r, el in enumerate(elements):
-        rows[r, column[el.body_a]] += 1.0
-        rows[r, column[el.body_b]] -= el.ratio
-        rows[r, column[el.body_c]] += el.ratio - 1.0
-    rows[-1, column[model.frame_body]] = 1.0
-    return rows
+    n_el = len(elements)
+    ratio = np.array([el.ratio for el in elements], dtype=float)
+    on_a, on_b, on_c = element_stencil(ratio)
+    bodies = body_columns(elements, column).astype(np.int64).reshape(n_el, 3)
+    rows = np.concatenate([np.tile(np.arange(n_el), 3), [n_el]])
+    cols = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], [column[model.frame_body]]])
+    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c, [1.0]])
+    return Triplets.build(rows, cols, values, (n_el + 1, len(model.bodies)))
+
+
+def constraint_matrix(model: Model, elements: tuple[Element, ...] | None = None) -> np.ndarray:
+    """Rows: one per element (Willis/coupling), then ``w_frame = 0``; columns: bodies."""
+    return constraint_triplets(model, elements).dense()
 
 
 def degrees_of_freedom(model: Model) -> int:
     """Number of independent speeds the train needs (bodies - rank of the constraints)."""
-    rows = constraint_matrix(model)
-    return len(model.bodies) - _rank(rows)
-
-
-def _rank(matrix: np.ndarray) -> int:
-    if matrix.size == 0:
-        return 0
-    s = np.linalg.svd(matrix, compute_uv=False)
-    return int(np.sum(s > _RTOL * max(1.0, s[0])))
+    return len(model.bodies) - rank(constraint_triplets(model))
 
 
 def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
-                 slips: Mapping[int, float] | None = None) -> Kinematics:
+                 slips: Mapping[int, float] | None = None,
+                 elements: tuple[Element, ...] | None = None) -> Kinematics:
     """Solve every body's speed.
 
     Parameters
@@ -99,6 +107,8 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     slips : mapping, optional
         ``{link index: s}`` added to that mesh's Willis row (used for backlash and
         fluctuation sensitivities; 0 in a normal solve).
+    elements : tuple of Element, optional
+        ``elements_of(model)``, when the caller has it already.
 
     Returns
     -------
@@ -122,32 +132,35 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     >>> kin.speed("2"), kin.ratio
     (-4.0, -2.5)
     """
-    elements = elements_of(model)
-    rows = constraint_matrix(model, elements)
+    elements = elements_of(model) if elements is None else elements
+    system = constraint_triplets(model, elements)
     n_bodies = len(model.bodies)
-    dof = n_bodies - _rank(rows)
+    dof = n_bodies - rank(system)
     if dof == 0:
         raise KinematicsError("the train cannot move (0 degrees of freedom): its meshes and "
                               "couplings lock every body")
     given = _given_speeds(model, speeds, dof)
-    rhs = np.zeros(len(rows))
+    rhs = np.zeros(len(elements))
     row_of = {el.link: r for r, el in enumerate(elements)}
     for index, value in (slips or {}).items():
         if index not in row_of:
             raise KinematicsError(f"links[{index}] is not a mesh or coupling: it has no slip")
         rhs[row_of[index]] = value
-    solution = _solve_reduced(model, rows[:-1], rhs[:-1], given)
+    rows = system.part(np.arange(len(elements)), np.arange(n_bodies))
+    solution = _solve_reduced(model, rows, rhs, given)
     inputs, outputs = model.inputs, model.outputs
+    ids = [b.id for b in model.bodies]
     return Kinematics(
-        body_speeds=MappingProxyType({b.id: float(solution[j]) for j, b in enumerate(model.bodies)}),
+        body_speeds=MappingProxyType(dict(zip(ids, solution.tolist()))),
         body_of=model.body_of, dof=dof, given=MappingProxyType(dict(given)),
         input_component=inputs[0].component if len(inputs) == 1 else None,
         output_component=outputs[0].component if len(outputs) == 1 else None)
 
 
-def _solve_reduced(model: Model, rows: np.ndarray, rhs: np.ndarray,
+def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
                    given: Mapping[str, float]) -> np.ndarray:
-    """Substitute the frame and the given speeds, then solve for the other bodies."""
+    """Substitute the frame and the given speeds, then solve for the other bodies: the
+    rows matched to the unknowns (structurally) solved scaled, every row checked."""
     column = {body.id: j for j, body in enumerate(model.bodies)}
     known: dict[int, float] = {column[model.frame_body]: 0.0}
     for component, value in given.items():
@@ -157,34 +170,43 @@ def _solve_reduced(model: Model, rows: np.ndarray, rhs: np.ndarray,
                 "is on a body whose speed is already given"
             raise KinematicsError(f"a speed is given for {component!r}, which {what}")
         known[j] = value
-    unknown = [j for j in range(len(model.bodies)) if j not in known]
     solution = np.zeros(len(model.bodies))
-    for j, value in known.items():
-        solution[j] = value
-    reduced_rhs = rhs - rows[:, list(known)] @ np.array(list(known.values()))
-    reduced = rows[:, unknown]
-    if unknown:
-        solution[unknown] = _least_squares(reduced, reduced_rhs)
-    residual = rows @ solution - rhs
+    solution[list(known)] = list(known.values())
+    is_known = np.zeros(len(model.bodies), dtype=bool)
+    is_known[list(known)] = True
+    unknown = np.flatnonzero(~is_known)
+    reduced_rhs = rhs - rows.dot(solution)
+    reduced = rows.part(np.arange(rows.shape[0]), unknown)
+    determined = True
+    if unknown.size:
+        values, determined = _solve_unknown(reduced, reduced_rhs)
+        solution[unknown] = values
+    residual = rows.dot(solution) - rhs
     scale = max(1.0, float(np.max(np.abs(solution))))
     if residual.size and np.max(np.abs(residual)) > 1e-9 * scale:
         raise KinematicsError("the given speeds contradict each other: "
                               + ", ".join(f"{c} = {v:g} rad/s" for c, v in given.items())
                               + " cannot all hold")
-    if unknown and _rank(reduced) < len(unknown):
+    if not determined:
         raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
     return solution
 
 
-def _least_squares(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """Exact solve where the system is square and regular (the usual case), else lstsq;
-    the caller checks the residual and the rank either way."""
-    if matrix.shape[0] == matrix.shape[1]:
-        try:
-            return np.linalg.solve(matrix, rhs)
-        except np.linalg.LinAlgError:
-            pass
-    return np.linalg.lstsq(matrix, rhs, rcond=None)[0]
+def _solve_unknown(reduced: Triplets, rhs: np.ndarray) -> tuple[np.ndarray, bool]:
+    """The unknown speeds and whether they are determined: the rows matched to them solved
+    scaled when the structure allows (the usual case); else dense least squares and the
+    rank of the equilibrated matrix."""
+    col_of = matching(reduced)
+    rows = np.flatnonzero(col_of >= 0)
+    if rows.size == reduced.shape[1]:
+        solved = solve_square(reduced.part(rows, col_of[rows]), rhs[rows])
+        if solved.regular:
+            values = np.empty(reduced.shape[1])
+            values[col_of[rows]] = solved.x
+            return values, True
+    matrix = reduced.dense()
+    values = np.linalg.lstsq(matrix, rhs, rcond=None)[0]
+    return values, svd_rank(reduced) == reduced.shape[1]
 
 
 def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) -> dict:
@@ -206,10 +228,10 @@ def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) ->
     return given
 
 
-def _underdetermined_message(model: Model, reduced: np.ndarray, unknown: list[int],
+def _underdetermined_message(model: Model, reduced: Triplets, unknown: np.ndarray,
                              given: Mapping) -> str:
-    _, s, vt = np.linalg.svd(reduced)
-    null = vt[int(np.sum(s > _RTOL * max(1.0, s[0]))):]
+    _, s, vt = np.linalg.svd(equilibrated(reduced.dense()))
+    null = vt[int(np.sum(s > SVD_RTOL * max(1.0, s[0]))):] if s.size else vt
     free = [model.bodies[j].id for k, j in enumerate(unknown) if np.any(np.abs(null[:, k]) > 1e-9)]
     return ("the given speeds (" + ", ".join(given) + ") do not fix the motion; "
             "bodies still free to turn: " + ", ".join(free))

@@ -18,6 +18,7 @@ from typing import Callable
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil
+from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
 
 #: A driver code per element: +1 gear a drives, -1 gear b drives, 0 no power passes.
 Pattern = tuple[int, ...]
@@ -43,12 +44,10 @@ def relative_speeds(elements: tuple[Element, ...], kin: Kinematics) -> np.ndarra
     >>> relative_speeds(elements_of(m), solve_speeds(m, {"case": 1, "L": 1}))  # doctest: +SKIP
     array([0., 0.])
     """
-    out = np.empty(len(elements))
-    for k, e in enumerate(elements):
-        w_a, w_b, w_c = (kin.body_speeds[b] for b in e.bodies)
-        rel = w_a - w_c
-        out[k] = 0.0 if abs(rel) <= SPEED_NOISE * max(abs(w_a), abs(w_b), abs(w_c)) else rel
-    return out
+    speeds = kin.body_speeds
+    w = body_columns(elements, speeds).astype(float).reshape(-1, 3)
+    rel = w[:, 0] - w[:, 2]
+    return np.where(np.abs(rel) <= SPEED_NOISE * np.abs(w).max(axis=1, initial=0.0), 0.0, rel)
 
 
 def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
@@ -58,22 +57,30 @@ def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.
     The frame is left out (it collects every reaction of the train), unless the element
     touches nothing else. A force far below this scale is round-off: nothing passes.
     """
-    load: dict[str, float] = {b: abs(t) for b, t in external.items()}
-    for e, force, f in zip(elements, forces, factors):
-        for body, c in zip(e.bodies, element_stencil(e.ratio, f)):
-            load[body] = load.get(body, 0.0) + abs(c * force)
-    scales = np.empty(len(elements))
-    for k, e in enumerate(elements):
-        own = [load.get(b, 0.0) for b in e.bodies if b != frame_body]
-        scales[k] = max(own) if own else max(load.values(), default=0.0)
-    return scales
+    index: dict[str, int] = {}
+    for triple in map(ELEMENT_BODIES, elements):
+        for b in triple:
+            if b not in index:
+                index[b] = len(index)
+    bodies = body_columns(elements, index).astype(np.int64).reshape(-1, 3)
+    outside = np.array([index.setdefault(b, len(index)) for b in external], dtype=np.int64)
+    ratio = np.array([e.ratio for e in elements], dtype=float)
+    stencil = element_stencil(ratio, np.asarray(factors, dtype=float))
+    load = np.zeros(len(index))
+    np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
+    for column, c in enumerate(stencil):
+        np.add.at(load, bodies[:, column], np.abs(c * forces))
+    frame = index.get(frame_body, -1)
+    own = np.where(bodies == frame, -np.inf, load[bodies]).max(axis=1, initial=-np.inf)
+    return np.where(np.isfinite(own), own, load.max(initial=0.0))
 
 
 def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Pattern:
     """Who drives each element: the sign of the power gear a feeds in, ``-λ (w_a - w_c)``;
     0 where the relative speed is zero or the force is round-off on its own scale."""
-    return tuple(0 if r == 0.0 or abs(lam) <= FORCE_NOISE * s else int(np.sign(-lam * r))
-                 for lam, r, s in zip(forces, rel, scales))
+    code = np.sign(-np.asarray(forces) * rel).astype(int)
+    code[(np.asarray(rel) == 0.0) | (np.abs(forces) <= FORCE_NOISE * np.asarray(scales))] = 0
+    return tuple(code.tolist())
 
 
 def factors_of(pattern: Pattern, elements: tuple[Element, ...]) -> np.ndarray:
@@ -91,7 +98,10 @@ def agrees(assumed: Pattern, found: Pattern) -> bool:
 
 def settle(solve: ForceSolver, elements: tuple[Element, ...],
            rel: np.ndarray) -> tuple[Pattern | None, int, list[Pattern]]:
-    """Iterate ``pattern -> factors -> forces -> pattern`` to a self-consistent pattern.
+    """Iterate ``pattern -> factors -> forces -> pattern`` to a self-consistent pattern:
+    one whose forces pass power the assumed way in every element (:func:`agrees`; an
+    element found passing nothing, e.g. past the point where a very long lossy chain's
+    power underflows, agrees with its assumed driver).
 
     Parameters
     ----------
@@ -121,7 +131,7 @@ def settle(solve: ForceSolver, elements: tuple[Element, ...],
     for passes in range(1, MAX_PASSES + 1):
         forces, scales = solve(factors_of(pattern, elements))
         following = pattern_of(forces, rel, scales)
-        if following == pattern:
+        if agrees(pattern, following):
             return pattern, passes, history
         if following in history:
             return None, passes, history

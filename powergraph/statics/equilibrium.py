@@ -1,4 +1,4 @@
-"""Torque equilibrium of every body for a given set of mesh factors (DESIGN §3).
+"""Torque equilibrium of every body for a given set of mesh factors (docs/theory.md).
 
 Element ``k`` applies ``λ_k`` to gear a, ``-i·f·λ_k`` to gear b and ``(i·f - 1)·λ_k`` to
 its carrier (``f = 1`` ideal, ``η`` when a drives in the carrier's frame, ``1/η`` when b
@@ -8,14 +8,20 @@ drives). Each body's element torques plus its external torque sum to zero. Unkno
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Mapping
 
 import numpy as np
 
 from powergraph.errors import StaticsError
-from powergraph.kinematics import Element, Kinematics
+from powergraph.kinematics import Element, Kinematics, element_stencil
+from powergraph.kinematics.elements import body_columns
+from powergraph.kinematics.linear import (
+    SVD_RTOL,
+    Triplets,
+    equilibrated,
+    solve_square,
+)
 from powergraph.model.spec import Model
-
-_RTOL = 1e-10
 
 
 @dataclass(frozen=True)
@@ -28,7 +34,7 @@ class Loads:
 
 
 def loads_of(model: Model, kin: Kinematics) -> Loads:
-    """External torques from the ports' power/torque (SPEC §1 sign conventions).
+    """External torques from the ports' power/torque (sign conventions of docs/format.md).
 
     An input's power is what it feeds in (``T = P/w``); an output's power is what it takes
     out (``T = -P/w``). With no power or torque anywhere, the first input feeds 1 W.
@@ -66,38 +72,98 @@ class Equilibrium:
     indeterminate: bool          # internal load sharing not fixed by statics (min-norm used)
 
 
-def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
-                      factors: np.ndarray) -> Equilibrium:
-    """Solve the torque balance for element factors ``factors`` (``f`` per element)."""
+def equilibrium_triplets(model: Model, elements: tuple[Element, ...], loads: Loads,
+                         factors) -> Triplets:
+    """The torque balance: rows = bodies, columns = element forces then unknown external
+    torques. Each element's column is its stencil with its factor."""
     row = {body.id: r for r, body in enumerate(model.bodies)}
     n_el, n_ext = len(elements), len(loads.unknown)
-    matrix = np.zeros((len(model.bodies), n_el + n_ext))
-    for k, (el, f) in enumerate(zip(elements, factors)):
-        matrix[row[el.body_a], k] += 1.0
-        matrix[row[el.body_b], k] -= el.ratio * f
-        matrix[row[el.body_c], k] += el.ratio * f - 1.0
-    for j, body in enumerate(loads.unknown):
-        matrix[row[body], n_el + j] = 1.0
+    ratio = np.array([el.ratio for el in elements], dtype=float)
+    on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
+    bodies = body_columns(elements, row).astype(np.int64).reshape(n_el, 3)
+    k = np.arange(n_el)
+    rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2],
+                           [row[b] for b in loads.unknown]])
+    cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
+    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c, np.ones(n_ext)])
+    return Triplets.build(rows, cols, values, (len(model.bodies), n_el + n_ext))
+
+
+def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
+                      factors: np.ndarray, speeds: Mapping[str, float] | None = None,
+                      guess: np.ndarray | None = None) -> Equilibrium:
+    """Solve the torque balance for element factors ``factors`` (``f`` per element).
+
+    ``speeds`` (body speeds, optional) give the expected size of each unknown before the
+    solve: a force passes about the train's power at its relative speed, an external
+    torque about that power at its body's speed (:func:`expected_sizes`). ``guess``, the
+    forces then the unknown external torques of a previous solve, is a better hint still.
+
+    A square balance is solved scaled (each force and torque accurate relative to itself,
+    :func:`powergraph.kinematics.linear.solve_square`) and is determined when its scaled
+    system is regular; otherwise the singular values of the equilibrated balance decide
+    between indeterminate load sharing (minimum-norm forces), undetermined loads and
+    contradictory loads.
+    """
+    row = {body.id: r for r, body in enumerate(model.bodies)}
+    n_el = len(elements)
+    system = equilibrium_triplets(model, elements, loads, factors)
     rhs = np.zeros(len(model.bodies))
     for body, torque in loads.given.items():
         rhs[row[body]] -= torque
-    solution, indeterminate = _solve(matrix, rhs, n_el, model, loads)
+    if guess is None and speeds is not None:
+        guess = expected_sizes(elements, loads, speeds)
+    solution, indeterminate = _solve(system, rhs, n_el, loads, guess)
     external = dict(loads.given)
     external.update({body: float(solution[n_el + j]) for j, body in enumerate(loads.unknown)})
     return Equilibrium(forces=solution[:n_el], external=external, indeterminate=indeterminate)
 
 
-def _solve(matrix: np.ndarray, rhs: np.ndarray, n_el: int, model: Model,
-           loads: Loads) -> tuple[np.ndarray, bool]:
-    if matrix.shape[0] == matrix.shape[1]:
-        try:
-            solution = np.linalg.solve(matrix, rhs)
-            if np.all(np.isfinite(solution)) and np.linalg.cond(matrix) < 1e12:
-                return solution, False
-        except np.linalg.LinAlgError:
-            pass
-    _, s, vt = np.linalg.svd(matrix)
-    rank = int(np.sum(s > _RTOL * max(1.0, s[0])))
+def expected_sizes(elements: tuple[Element, ...], loads: Loads,
+                   speeds: Mapping[str, float]) -> np.ndarray:
+    """Expected magnitude of each unknown (forces, then unknown external torques): the
+    train's power over the relative speed of the element or the speed of the body; 0
+    where that speed is 0 (the solve then takes the size the neighbours give)."""
+    power = max((abs(t * speeds[b]) for b, t in loads.given.items()), default=0.0) or 1.0
+    w = body_columns(elements, speeds).astype(float).reshape(len(elements), 3)
+    rel = np.abs(np.concatenate([w[:, 0] - w[:, 2],
+                                 np.array([speeds[b] for b in loads.unknown], dtype=float)]))
+    out = np.zeros(len(rel))
+    np.divide(power, rel, out=out, where=rel > 0)
+    return out
+
+
+def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,
+                        guess: np.ndarray | None) -> np.ndarray | None:
+    """A square balance with the unknown external torques eliminated first: each one
+    appears in its own body's row only, so the other rows fix the forces (solved scaled)
+    and its row then gives it. None when that part is not regular (or two unknown torques
+    share a body)."""
+    unknown_rows = system.rows[system.cols >= n_el]
+    if len(np.unique(unknown_rows)) != system.shape[1] - n_el:
+        return None
+    others = np.setdiff1d(np.arange(system.shape[0]), unknown_rows)
+    forces_part = system.part(others, np.arange(n_el))
+    solved = solve_square(forces_part, rhs[others], None if guess is None else guess[:n_el])
+    if not solved.regular:
+        return None
+    x = np.zeros(system.shape[1])
+    x[:n_el] = solved.x
+    element_torques = system.part(np.arange(system.shape[0]), np.arange(n_el)).dot(solved.x)
+    order = system.cols[system.cols >= n_el]
+    x[order] = rhs[unknown_rows] - element_torques[unknown_rows]
+    return x
+
+
+def _solve(system: Triplets, rhs: np.ndarray, n_el: int, loads: Loads,
+           guess: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
+    if system.shape[0] == system.shape[1]:
+        x = _solve_forces_first(system, rhs, n_el, guess)
+        if x is not None:
+            return x, False
+    matrix = system.dense()
+    _, s, vt = np.linalg.svd(equilibrated(matrix))
+    rank = int(np.sum(s > SVD_RTOL * max(1.0, s[0]))) if s.size else 0
     null = vt[rank:]
     if null.size and np.any(np.abs(null[:, n_el:]) > 1e-9):
         missing = max(1, loads.needed - len(loads.given))

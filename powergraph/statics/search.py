@@ -84,34 +84,6 @@ def statics_of(model: Model, elements: tuple[Element, ...], loads: Loads, rel: n
                    unknown_rows=tuple(row[b] for b in loads.unknown), ideal=ideal)
 
 
-def refine(st: Statics, factors: np.ndarray, start: np.ndarray) -> np.ndarray | None:
-    """Forces and unknown external torques (N·m) re-solved with every column scaled by the
-    magnitude of ``start`` and every row by its largest entry, so that each unknown comes
-    out accurate relative to itself, not to the largest torque of the train (long chains,
-    tiny efficiencies). None when the balance is not square or the scaled solve fails.
-    """
-    n_el, n_b = len(st.elements), len(st.row)
-    if n_el + st.n_unknown != n_b:
-        return None
-    matrix = np.zeros((n_b, n_b))
-    for k in range(n_el):
-        matrix[:, k] = st.column(k, factors[k])
-    for j, r in enumerate(st.unknown_rows):
-        matrix[r, n_el + j] = 1.0
-    x = start / st.top
-    for _ in range(2):
-        d = np.abs(x)
-        d[d == 0] = 1.0
-        scaled = matrix * d
-        rows = np.abs(scaled).max(axis=1)
-        rows[rows == 0] = 1.0
-        try:
-            x = d * np.linalg.solve(scaled / rows[:, None], st.rhs / rows)
-        except np.linalg.LinAlgError:
-            return None
-    return x * st.top if np.all(np.isfinite(x)) else None
-
-
 def enumerate_patterns(st: Statics) -> list[tuple[int, ...]] | None:
     """Driver codes (+1/-1 for each of ``st.lossy``) of every pattern whose torque balance
     passes power the assumed way, screened loosely (the caller confirms each).

@@ -12,7 +12,8 @@ from typing import Mapping
 
 import numpy as np
 
-from powergraph.kinematics import Element, Kinematics, elements_of, solve_speeds
+from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
+from powergraph.kinematics.elements import body_columns
 from powergraph.model.spec import Model
 from powergraph.statics.bearings import with_extra_torques
 from powergraph.statics.directions import (
@@ -25,10 +26,7 @@ from powergraph.statics.directions import (
 from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
 from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
-from powergraph.statics.search import Statics, refine, statics_of
-
-#: Unknowns spanning more than this range (smallest/largest) are re-solved scaled.
-WIDE_RANGE = 1e-6
+from powergraph.statics.search import Statics, statics_of
 
 
 def solve(model: Model, speeds: Mapping[str, float] | None = None,
@@ -75,8 +73,8 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     """
     if extra_torques is None and needs_friction(model):
         return solve_with_friction(model, lambda fixed, extra: solve(fixed, speeds, extra))
-    kin = solve_speeds(model, speeds)
     elements = elements_of(model)
+    kin = solve_speeds(model, speeds, elements=elements)
     loads = loads_of(model, kin)
     if extra_torques:
         loads = with_extra_torques(loads, extra_torques)
@@ -85,14 +83,16 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     st = statics_of(model, elements, loads, rel)
 
     def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        eq = _equilibrium(model, elements, loads, factors, st)
+        eq = _equilibrium(model, elements, loads, factors, kin, last)
+        last[:] = [eq, np.array(factors, dtype=float)]
         return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
                                        model.frame_body)
 
+    last: list = []    # the previous solve and its factors: its sizes hint the next one
     pattern, passes, visited = settle(forces, elements, rel)
     if pattern is not None:
         factors = factors_of(pattern, elements)
-        return _assemble(model, kin, elements, loads, factors, st, passes)
+        return _assemble(model, kin, elements, loads, factors, st, passes, last)
     from powergraph.statics.locking import decide
 
     decision = decide(model, elements, loads, rel, forces, visited)
@@ -100,40 +100,37 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
                              complete=decision.complete)
     if decision.chosen is not None:
         return _assemble(model, kin, elements, loads, decision.chosen.factors, st, passes,
-                         search)
+                         search=search)
     lock = Lock(meshes=tuple(elements[k].link for k in decision.locking),
                 reasons=decision.reasons, asked=kin)
     return _at_rest(model, kin, elements, loads, passes, search, lock)
 
 
 def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
-                 factors: np.ndarray, st: Statics) -> Equilibrium:
-    """The torque balance; re-solved scaled when its unknowns span many decades, so each
-    is accurate relative to itself (a long chain's last torque, tiny efficiencies)."""
-    eq = solve_equilibrium(model, elements, loads, factors)
-    values = np.abs(np.concatenate([eq.forces, [eq.external[b] for b in loads.unknown]]))
-    if eq.indeterminate or not values.size or \
-            np.min(values, initial=np.inf, where=values > 0) > WIDE_RANGE * np.max(values):
-        return eq
-    refined = refine(st, factors, np.concatenate([eq.forces,
-                                                  [eq.external[b] for b in loads.unknown]]))
-    if refined is None:
-        return eq
-    n_el = len(elements)
-    external = dict(eq.external)
-    external.update({b: float(refined[n_el + j]) for j, b in enumerate(loads.unknown)})
-    return dataclasses.replace(eq, forces=refined[:n_el], external=external)
+                 factors: np.ndarray, kin: Kinematics,
+                 last: list = ()) -> Equilibrium:
+    """The torque balance, solved scaled so each force and torque is accurate relative to
+    itself (a long chain's last torque, tiny efficiencies); the previous solve, when there
+    is one (``[equilibrium, factors]``), tells the size of each unknown, or is the answer
+    when its factors are the same."""
+    guess = None
+    if last:
+        previous, previous_factors = last
+        if np.array_equal(previous_factors, factors):
+            return previous
+        guess = np.concatenate([previous.forces, [previous.external[b] for b in loads.unknown]])
+    return solve_equilibrium(model, elements, loads, factors, kin.body_speeds, guess)
 
 
 def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
               factors: np.ndarray, st: Statics, passes: int,
-              search: DirectionSearch | None = None) -> PowerFlowResult:
+              last: list = (), search: DirectionSearch | None = None
+              ) -> PowerFlowResult:
     """The result for consistent factors: forces, each element's driver, losses."""
-    eq = _equilibrium(model, elements, loads, factors, st)
+    eq = _equilibrium(model, elements, loads, factors, kin, last)
     scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
     pattern = pattern_of(eq.forces, st.rel, scales)
-    flows = tuple(_element_flow(model, el, force, f, code, kin)
-                  for el, force, f, code in zip(elements, eq.forces, factors, pattern))
+    flows = _element_flows(elements, eq.forces, factors, pattern, kin)
     return _result(model, kin, flows, eq, passes, search)
 
 
@@ -145,31 +142,43 @@ def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads
     rest = dataclasses.replace(
         kin, body_speeds=MappingProxyType({b: 0.0 for b in kin.body_speeds}))
     factors = np.ones(len(elements))
-    eq = solve_equilibrium(model, elements, loads, factors)
-    flows = tuple(dataclasses.replace(_element_flow(model, el, force, 1.0, 0, rest),
-                                      carrier_frame_power=0.0, loss=0.0)
-                  for el, force in zip(elements, eq.forces))
+    eq = solve_equilibrium(model, elements, loads, factors, kin.body_speeds)
+    flows = tuple(dataclasses.replace(flow, carrier_frame_power=0.0, loss=0.0)
+                  for flow in _element_flows(elements, eq.forces, factors,
+                                             [0] * len(elements), rest))
     result = _result(model, rest, flows, eq, passes, search)
     return dataclasses.replace(result, lock=lock)
 
 
-def _element_flow(model: Model, el: Element, force: float, factor: float, code: int,
-                  kin: Kinematics) -> ElementFlow:
-    torques: dict[str, float] = {}
-    parts = [(el.body_a, force), (el.body_b, -el.ratio * factor * force)]
-    if el.kind == "mesh" or factor != 1.0:  # an ideal coupling does not touch the frame
-        parts.append((el.body_c, (el.ratio * factor - 1.0) * force))
-    for body, torque in parts:
-        torques[body] = torques.get(body, 0.0) + float(torque)
-    rel_a = kin.body_speeds[el.body_a] - kin.body_speeds[el.body_c]
-    power_a = -force * rel_a                # fed in by gear a, carrier frame
-    loss = power_a * (1.0 - factor)         # = -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
-    virtual = power_a if code > 0 else (-power_a * factor if code < 0 else 0.0)
-    driver = el.a if code > 0 else (el.b if code < 0 else None)
-    return ElementFlow(link=el.link, kind=el.kind, a=el.a, b=el.b, carrier=el.carrier,
-                       ratio=el.ratio, efficiency=el.efficiency, force=float(force),
-                       factor=float(factor), torques=MappingProxyType(torques), driver=driver,
-                       carrier_frame_power=float(virtual), loss=float(loss))
+def _element_flows(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
+                   pattern, kin: Kinematics) -> tuple[ElementFlow, ...]:
+    """Each element's torques (its stencil times its force), carrier-frame power, driver
+    and loss."""
+    ratio = np.array([el.ratio for el in elements], dtype=float)
+    factors = np.asarray(factors, dtype=float)
+    forces = np.asarray(forces, dtype=float)
+    on_a, on_b, on_c = element_stencil(ratio, factors)
+    w = body_columns(elements, kin.body_speeds).astype(float).reshape(len(elements), 3)
+    power_a = -forces * (w[:, 0] - w[:, 2])   # fed in by gear a, carrier frame
+    loss = power_a * (1.0 - factors)          # = -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
+    code = np.asarray(pattern, dtype=int).reshape(len(elements))
+    virtual = np.where(code > 0, power_a, np.where(code < 0, -power_a * factors, 0.0))
+    columns = zip(elements, (on_a * forces).tolist(), (on_b * forces).tolist(),
+                  (on_c * forces).tolist(), forces.tolist(), factors.tolist(), code.tolist(),
+                  virtual.tolist(), loss.tolist())
+    out = []
+    for el, t_a, t_b, t_c, force, factor, c, power, lost in columns:
+        torques: dict[str, float] = {el.body_a: 0.0 + t_a}
+        torques[el.body_b] = torques.get(el.body_b, 0.0) + t_b
+        if el.kind == "mesh" or factor != 1.0:  # an ideal coupling does not touch the frame
+            torques[el.body_c] = torques.get(el.body_c, 0.0) + t_c
+        out.append(ElementFlow(
+            link=el.link, kind=el.kind, a=el.a, b=el.b, carrier=el.carrier, ratio=el.ratio,
+            efficiency=el.efficiency, force=force, factor=factor,
+            torques=MappingProxyType(torques),
+            driver=el.a if c > 0 else (el.b if c < 0 else None),
+            carrier_frame_power=power, loss=lost))
+    return tuple(out)
 
 
 def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: Equilibrium,

@@ -39,7 +39,6 @@ def test_three_meshes_at_one_in_a_million() -> None:
     assert [e.driver for e in result.meshes] == ["g0", "g1", "g2"]
 
 
-@pytest.mark.slow  # 300 bodies: the conservation check draws 300 flow graphs
 def test_three_hundred_gears_at_090() -> None:
     result = solve(chain(300, 0.9))
     assert result.efficiency == pytest.approx(0.9 ** 299, rel=1e-9, abs=0)
