@@ -1,4 +1,5 @@
-"""``powergraph sweep MODEL --set PATH=START:STOP:N ... [-o FILE.csv] [--plot FILE]``.
+"""``powergraph sweep MODEL --set PATH=START:STOP:N ... [-o FILE.csv] [--plot FILE]
+[--workers N | --scheduler dask://ADDRESS]``.
 
 Compiles the model once and evaluates every point of the Cartesian grid of the ``--set``
 values (docs/sweep.md). CSV columns: each PATH (first varies slowest), then ``ratio`` and
@@ -11,8 +12,9 @@ import argparse
 import io
 import sys
 
-from powergraph.cli.common import (check_figure_path, efficiency_arg, load, new_figure,
-                                   save_figure, write_atomically)
+from powergraph.cli.common import (add_cluster_arguments, check_figure_path, cluster_options,
+                                   efficiency_arg, load, new_figure, save_figure,
+                                   write_atomically)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -39,6 +41,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="set every mesh's basic efficiency first")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_cluster_arguments(parser)
     parser.set_defaults(handler=run)
 
 
@@ -49,7 +52,13 @@ def run(args: argparse.Namespace) -> int:
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
     model = load(args.model, args.mesh_efficiency)
     grid = cartesian(parse_sets(model, args.sets))
-    result = compile_sweep(model, list(grid))(grid, quiet=args.quiet)
+    cluster = cluster_options(args)
+    if cluster["workers"] is None and cluster["scheduler"] is None:
+        result = compile_sweep(model, list(grid))(grid, quiet=args.quiet)
+    else:
+        from powergraph.analyses.sweep.distributed import sweep_on_cluster
+
+        result = sweep_on_cluster(model, grid, **cluster)
     if args.output:
         write_atomically(args.output, lambda tmp: result.to_csv(tmp, extra=args.all_columns))
     else:

@@ -13,7 +13,7 @@ import math
 import re
 from pathlib import Path
 
-from powergraph.cli.common import print_json
+from powergraph.cli.common import add_cluster_arguments, cluster_options, print_json
 from powergraph.errors import UsageError
 
 
@@ -43,11 +43,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("-o", "--output", metavar="DIR",
                         help="write the best K models and their power-flow diagrams here")
-    where = parser.add_mutually_exclusive_group()
-    where.add_argument("--workers", metavar="N",
-                       help="run on a local Dask cluster of N worker processes")
-    where.add_argument("--scheduler", metavar="dask://ADDRESS",
-                       help="run on the Dask cluster of this scheduler")
+    add_cluster_arguments(parser)
     parser.set_defaults(handler=run)
 
 
@@ -109,13 +105,8 @@ def run(args: argparse.Namespace) -> int:
         teeth=parse_teeth(args.teeth), planets=_whole(args.planets, "--planets", 1, 64),
         mesh_efficiency=efficiency, top=_whole(args.top, "--top", 1, 1000),
         max_grid=_whole(args.max_grid, "--max-grid", 1, 10**12),
-        workers=_whole(args.workers, "--workers", 1, 1024) if args.workers else None,
-        scheduler=args.scheduler)
+        **cluster_options(args))
     target = _output_dir(args.output) if args.output else None
-    if args.scheduler:
-        from powergraph.analyses.parallel import scheduler_address
-
-        scheduler_address(args.scheduler)   # a bad address fails before the search
     from powergraph.analyses.synthesis.synthesize import synthesize
 
     result = synthesize(ratio, **options)

@@ -105,3 +105,33 @@ def new_axes(figsize: tuple[float, float] = (6.4, 4.8), projection: str | None =
 def save_figure(figure, target: str | Path, **savefig: Any) -> None:
     """Write ``figure`` to ``target`` atomically (``savefig`` keywords passed on)."""
     write_atomically(target, lambda tmp: figure.savefig(tmp, **savefig))
+
+
+def add_cluster_arguments(parser: Any) -> None:
+    """``--workers N | --scheduler dask://ADDRESS`` (docs/synthesis_ratio.md, docs/sweep.md)."""
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--workers", metavar="N",
+                       help="run on a local Dask cluster of N worker processes")
+    where.add_argument("--scheduler", metavar="dask://ADDRESS",
+                       help="run on the Dask cluster of this scheduler")
+
+
+def cluster_options(args: Any) -> dict[str, Any]:
+    """``{"workers": N or None, "scheduler": address or None}`` from the parsed options;
+    a bad number or address is a :class:`~powergraph.errors.UsageError` (exit 2)."""
+    from powergraph.errors import UsageError
+
+    workers = None
+    if args.workers is not None:
+        try:
+            value = float(args.workers)
+        except ValueError:
+            value = float("nan")
+        if not (value.is_integer() and 1 <= value <= 1024):
+            raise UsageError(f"--workers {args.workers}: must be a whole number from 1 to 1024")
+        workers = int(value)
+    if args.scheduler:
+        from powergraph.analyses.parallel import scheduler_address
+
+        scheduler_address(args.scheduler)   # a bad address fails before any work
+    return {"workers": workers, "scheduler": args.scheduler}

@@ -124,3 +124,21 @@ def test_invalid_model_exits_2(capsys, tmp_path) -> None:
     bad.write_text("name: x\ncomponents: {0: {role: frame}}\nlinks: []\nports: []\n")
     status, _, err = run(capsys, str(bad), "--set", "links.0.efficiency=0.9")
     assert status == 2 and "powergraph: error" in err
+
+
+@pytest.mark.parametrize("argv, words", [
+    (("--workers", "0"), "--workers 0"), (("--workers", "two"), "--workers two"),
+    (("--scheduler", "localhost:8786"), "dask://")])
+def test_bad_cluster_options_exit_2(capsys, argv, words) -> None:
+    status, out, err = run(capsys, RV40E, "--set", "links.1.efficiency=0.9:1:3", *argv)
+    assert status == 2 and out == "" and words in err and err.count("\n") == 1
+
+
+@pytest.mark.slow  # starts a local cluster of two worker processes
+def test_two_workers_print_the_same_table(capsys) -> None:
+    argv = (RV40E, "--set", "links.1.efficiency=0.9:1:5", "--set",
+            "components.1.teeth=10:14:3", "--quiet")
+    status, alone, _ = run(capsys, *argv)
+    status_2, on_cluster, err = run(capsys, *argv, "--workers", "2")
+    assert status == status_2 == 0, err
+    assert on_cluster == alone
