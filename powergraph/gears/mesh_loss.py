@@ -76,6 +76,7 @@ class PathOfContact:
     working_radius_2: float
     addendum_path_1: float   # from the pitch point to the end of contact on gear 1's tip side
     addendum_path_2: float   # from the pitch point to the start of contact on gear 2's tip side
+    warnings: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -88,6 +89,24 @@ class MeshLoss:
     epsilon_2: float
     loss_factor: float
     mu: float | None = None
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def ohlendorf_loss_factor(self) -> float:
+        """Ohlendorf's closed form ``π(u + 1)/(z1 u cos β_b)·(1 − ε_α + ε_1² + ε_2²)`` as
+        published, whatever the contact ratios: equal to :attr:`loss_factor` within its
+        domain (``ε_1, ε_2 < 1``, ``ε_α < 2``); outside it :attr:`loss_factor` is the exact
+        load-shared integral and this the textbook value, kept for comparison."""
+        e1, e2 = self.epsilon_1, self.epsilon_2
+        return self._scale * (1 - (e1 + e2) + e1 ** 2 + e2 ** 2)
+
+    @property
+    def _scale(self) -> float:
+        g = self.geometry
+        u = (-1.0 if g.internal else 1.0) * g.teeth_2 / g.teeth_1
+        beta_b = math.asin(math.sin(math.radians(g.helix_angle_deg))
+                           * math.cos(math.radians(g.pressure_angle_deg)))
+        return math.pi * (u + 1) / (g.teeth_1 * u * math.cos(beta_b))
 
     @property
     def efficiency(self) -> float | None:
@@ -99,9 +118,11 @@ class MeshLoss:
         (and ``mu`` when given), plus the geometry."""
         out: dict[str, Any] = {"epsilon_alpha": self.epsilon_alpha, "epsilon_1": self.epsilon_1,
                                "epsilon_2": self.epsilon_2, "loss_factor": self.loss_factor,
-                               "efficiency": self.efficiency}
+                               "efficiency": self.efficiency,
+                               "ohlendorf_loss_factor": self.ohlendorf_loss_factor}
         if self.mu is not None:
             out["mu"] = self.mu
+        out["warnings"] = list(self.warnings)
         out["geometry"] = asdict(self.geometry)
         return out
 
@@ -114,9 +135,13 @@ class MeshLoss:
                  f"contact ratio ε_α        {self.epsilon_alpha:.4f}",
                  f"addendum ratios ε_1, ε_2 {self.epsilon_1:.4f}, {self.epsilon_2:.4f}",
                  f"loss factor H_V          {self.loss_factor:.5f}"]
+        if abs(self.ohlendorf_loss_factor - self.loss_factor) > 1e-12 * self.loss_factor:
+            lines.append(f"  Ohlendorf's closed form {self.ohlendorf_loss_factor:.5f} "
+                         "(outside its domain: H_V above is the exact load-shared integral)")
         if self.mu is not None:
             lines += [f"friction coefficient μ   {self.mu:g}",
                       f"basic efficiency         {self.efficiency:.6f}"]
+        lines += [f"warning: {w}" for w in self.warnings]
         return "\n".join(lines)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
@@ -127,10 +152,13 @@ class MeshLoss:
                                     "factor")
 
 
-def path_of_contact(g: MeshGeometry) -> PathOfContact:
+def path_of_contact(g: MeshGeometry, strict: bool = True) -> PathOfContact:
     """The transverse path of contact of an involute pair (DIN 3960 formulas).
 
-    Raises ModelError when the pair cannot mesh (teeth, shifts or addenda out of range).
+    Raises ModelError when the pair cannot mesh (teeth, shifts or addenda out of range), and
+    when a tip passes the other gear's interference point (an undercut flank) — unless
+    ``strict`` is False, which computes the involute path all the same and lists the
+    interference in ``warnings`` (a calculator's answer for a pair a model may not use).
 
     >>> p = path_of_contact(MeshGeometry(20, 40))
     >>> round(p.addendum_path_1, 4), round(p.addendum_path_2, 4)
@@ -154,15 +182,18 @@ def path_of_contact(g: MeshGeometry) -> PathOfContact:
         raise ModelError(f"gear 2's tip circle (r {ra2:.4g} mm) lies inside its base circle "
                          f"(r {rb2:.4g} mm): it has no involute flank to mesh with")
     tip_2 = sign * (math.sqrt(ra2 ** 2 - rb2 ** 2) - rw2 * math.sin(alpha_w))
-    _check_interference(tip_1, tip_2, rw1, rw2, alpha_w, g.internal)
+    problems = _interference(tip_1, tip_2, rw1, rw2, alpha_w, g.internal)
+    if problems and strict:
+        raise ModelError(problems[0])
     beta_b = math.asin(math.sin(beta) * math.cos(alpha_n))
     return PathOfContact(base_pitch=math.pi * m_t * math.cos(alpha_t),
                          working_pressure_angle=alpha_w, base_helix_angle=beta_b,
                          working_radius_1=rw1, working_radius_2=rw2,
-                         addendum_path_1=tip_1, addendum_path_2=tip_2)
+                         addendum_path_1=tip_1, addendum_path_2=tip_2,
+                         warnings=tuple(problems))
 
 
-def mesh_loss(g: MeshGeometry, mu: float | None = None) -> MeshLoss:
+def mesh_loss(g: MeshGeometry, mu: float | None = None, strict: bool = True) -> MeshLoss:
     """Contact ratios and Ohlendorf's loss factor of a pair; its basic efficiency if ``mu``.
 
     Parameters
@@ -170,6 +201,8 @@ def mesh_loss(g: MeshGeometry, mu: float | None = None) -> MeshLoss:
     g : MeshGeometry
     mu : float, optional
         Mean coefficient of friction in the mesh (0 <= μ < 1).
+    strict : bool
+        Refuse a pair with interference (default); False computes it with a warning.
 
     Returns
     -------
@@ -188,7 +221,7 @@ def mesh_loss(g: MeshGeometry, mu: float | None = None) -> MeshLoss:
     """
     if mu is not None and not (0.0 <= mu < 1.0):
         raise ModelError(f"the friction coefficient must be in [0, 1), got {mu!r}")
-    path = path_of_contact(g)
+    path = path_of_contact(g, strict)
     e1, e2 = path.addendum_path_1 / path.base_pitch, path.addendum_path_2 / path.base_pitch
     if min(e1, e2) < 0 or e1 + e2 < 1.0:
         raise ModelError(f"the pair does not mesh continuously: contact ratio ε_α = "
@@ -196,7 +229,8 @@ def mesh_loss(g: MeshGeometry, mu: float | None = None) -> MeshLoss:
     u = (-1.0 if g.internal else 1.0) * g.teeth_2 / g.teeth_1
     scale = math.pi * (u + 1) / (g.teeth_1 * u * math.cos(path.base_helix_angle))
     return MeshLoss(geometry=g, epsilon_alpha=e1 + e2, epsilon_1=e1, epsilon_2=e2,
-                    loss_factor=scale * sliding_integral(e1, e2), mu=mu)
+                    loss_factor=scale * sliding_integral(e1, e2), mu=mu,
+                    warnings=path.warnings)
 
 
 def sliding_integral(e1: float, e2: float) -> float:
@@ -228,15 +262,18 @@ def sliding_integral(e1: float, e2: float) -> float:
     return 2.0 * total
 
 
-def _check_interference(tip_1: float, tip_2: float, rw1: float, rw2: float, alpha_w: float,
-                        internal: bool) -> None:
-    """Each tip must meet the line of action before the other gear's tangent point."""
+def _interference(tip_1: float, tip_2: float, rw1: float, rw2: float, alpha_w: float,
+                  internal: bool) -> list[str]:
+    """Each tip must meet the line of action before the other gear's tangent point: the
+    ways it does not."""
+    problems = []
     if tip_2 > rw1 * math.sin(alpha_w) * (1 + 1e-12):
-        raise ModelError("gear 2's tip passes the pinion's interference point (the pinion's "
-                         "flank would be undercut): shift the pinion or shorten gear 2's tip")
+        problems.append("gear 2's tip passes the pinion's interference point (the pinion's "
+                        "flank would be undercut): shift the pinion or shorten gear 2's tip")
     if not internal and tip_1 > rw2 * math.sin(alpha_w) * (1 + 1e-12):
-        raise ModelError("the pinion's tip passes gear 2's interference point: shift gear 2 "
-                         "or shorten the pinion's tip")
+        problems.append("the pinion's tip passes gear 2's interference point: shift gear 2 "
+                        "or shorten the pinion's tip")
+    return problems
 
 
 def _check(g: MeshGeometry) -> None:

@@ -129,9 +129,56 @@ def test_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_cli_refuses_an_impossible_pair_with_one_line(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["mesh", "20", "60", "--internal"]) == 2
+    assert main(["mesh", "20", "15", "--internal"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "interference" in err[0]
+    assert len(err) == 1 and "more teeth" in err[0]
+
+
+def _ohlendorf_by_hand(z1: int, z2: int, internal: bool) -> tuple[float, float, float]:
+    """Standard spur pair (m 1, α 20°, addendum 1, no shift), by the textbook: the path
+    of contact on each tip side over the base pitch, and Ohlendorf's closed form
+    H_V = π (u + 1)/(z1 u) (1 − ε_α + ε_1² + ε_2²), u = ±z2/z1 (negative internal)."""
+    r1, r2 = z1 / 2, z2 / 2
+    rb1, rb2, p_b = r1 * math.cos(ALPHA), r2 * math.cos(ALPHA), math.pi * math.cos(ALPHA)
+    e1 = (math.sqrt((r1 + 1) ** 2 - rb1 ** 2) - r1 * math.sin(ALPHA)) / p_b
+    if internal:     # the ring's tip circle is inside its pitch circle
+        e2 = (r2 * math.sin(ALPHA) - math.sqrt((r2 - 1) ** 2 - rb2 ** 2)) / p_b
+    else:
+        e2 = (math.sqrt((r2 + 1) ** 2 - rb2 ** 2) - r2 * math.sin(ALPHA)) / p_b
+    u = -z2 / z1 if internal else z2 / z1
+    return e1, e2, math.pi * (u + 1) / (z1 * u) * (1 - (e1 + e2) + e1 ** 2 + e2 ** 2)
+
+
+@pytest.mark.parametrize("z1, z2, internal, h_v, eta", [
+    (20, 40, False, 0.1661, 0.9917), (20, 60, True, 0.1077, 0.9946), (12, 36, False, 0.2318,
+                                                                       None)])
+def test_ohlendorf_values_of_standard_pairs(z1, z2, internal, h_v, eta, capsys) -> None:
+    """The loss factors quoted for standard 20° spur pairs (20/40, 20/−60, 12/36; η at
+    μ 0.05), within 1e-3, and the same quantities by hand. 20/−60 and 12/36 are past an
+    interference point with standard teeth: `powergraph mesh` computes them with a warning
+    (a model file refuses them). For 20/−60 ε_2 > 1, outside the closed form's domain:
+    ``ohlendorf_loss_factor`` is the published closed form, ``loss_factor`` the exact
+    load-shared integral (smaller: two pairs share the load over more of the path)."""
+    e1, e2, by_hand = _ohlendorf_by_hand(z1, z2, internal)
+    loss = mesh_loss(MeshGeometry(z1, z2, internal=internal), mu=0.05, strict=False)
+    assert (loss.epsilon_1, loss.epsilon_2) == pytest.approx((e1, e2), rel=1e-12)
+    assert loss.ohlendorf_loss_factor == pytest.approx(by_hand, rel=1e-12)
+    assert loss.ohlendorf_loss_factor == pytest.approx(h_v, abs=1e-3)
+    if eta is not None:
+        assert 1 - 0.05 * loss.ohlendorf_loss_factor == pytest.approx(eta, abs=1e-4)
+    if e2 < 1:
+        assert loss.loss_factor == pytest.approx(by_hand, rel=1e-12)
+    else:
+        assert loss.loss_factor == pytest.approx(
+            by_hand / (1 - (e1 + e2) + e1 ** 2 + e2 ** 2) * sliding_integral(e1, e2), rel=1e-12)
+        assert loss.loss_factor < loss.ohlendorf_loss_factor
+    assert bool(loss.warnings) == ((z1, z2) != (20, 40))
+    args = ["mesh", str(z1), str(z2), "--mu", "0.05", "--json"] + (["--internal"] if internal
+                                                                    else [])
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["ohlendorf_loss_factor"] == pytest.approx(by_hand, rel=1e-12)
+    assert len(data["warnings"]) == len(loss.warnings)
 
 
 def test_iso14179_mean_friction_coefficient_by_hand() -> None:
