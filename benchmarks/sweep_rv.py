@@ -18,8 +18,8 @@ memory allocated during one evaluation of (a) (``tracemalloc``; inputs excluded)
 ``compile_s`` the one-off compile time (sympy derivation included); ``*_first_s`` the
 warm-up runs, slower for both because fresh memory is page-faulted in.
 
-Derivation of the closed form (DESIGN §2–3; ids as in the model file)
---------------------------------------------------------------------
+Derivation of the closed form (docs/theory.md; ids as in the model file)
+-----------------------------------------------------------------------
 Bodies: 1 (input, speed ω1), 2/3 (planet gear on the crank), 4 (cycloid), 6/7 (output disk
 and planet frame), 0/5 (housing and needle gear). Elements: mesh A = 1–2 in the frame of
 carrier 7, Willis ratio i_A = -z2/z1; mesh B = 4–5 in the frame of the crank 3, i_B = +z5/z4

@@ -1,6 +1,8 @@
-"""Closed-form ratio and efficiency (issue 10).
+"""Closed-form ratio and efficiency (``powergraph formula``, docs/formula.md).
 
-Expected forms come from REFERENCE.md §C (2K-H, K-H-V), REFERENCE §A-B (RV-40E), and a
+Expected forms come from the textbook closed forms of the 2K-H arrangements and of the
+K-H-V stage (Willis' relation with the basic efficiency in the carrier's frame, written
+beside each test), the RV-40E's hand derivation (benchmarks/sweep_rv.py), and a
 hand derivation written below (Wolfrom) -- never from the code's output. On trains the
 formulas were not written for, they are checked against the numeric solver
 (``powergraph.solve``) at the model's values and at random points inside their stated
@@ -41,7 +43,7 @@ def solved(model):
     return result
 
 
-# --- REFERENCE §C: 2K-H, k = z_r/z_s, eta0 = eta(s-p)*eta(p-r) ------------------------------
+# --- 2K-H closed forms, k = z_r/z_s, eta0 = eta(s-p)*eta(p-r) -------------------------------
 
 TWO_K_H = [
     ("planetary_2kh_sun_to_carrier.yaml", lambda k, e: 1 + k, lambda k, e: (1 + e * k) / (1 + k)),
@@ -72,7 +74,7 @@ def test_2kh_closed_forms(name, ratio, efficiency) -> None:
 
 
 def test_khv_closed_form() -> None:
-    """REFERENCE §C: ratio -N, efficiency eta0/(N + 1 - N eta0), N = z_p/(z_r - z_p)."""
+    """K-H-V closed form: ratio -N, efficiency eta0/(N + 1 - N eta0), N = z_p/(z_r - z_p)."""
     f = derive_formulas(load_model(MODELS / "khv_involute.yaml"))
     z_p, z_r, eta0 = f.symbols["z_p"], f.symbols["z_r"], f.symbols["eta_0"]
     n = z_p / (z_r - z_p)
@@ -82,7 +84,7 @@ def test_khv_closed_form() -> None:
     assert f.evaluate()["efficiency"] == pytest.approx(0.99 / (9 - 8 * 0.99), rel=1e-12)
 
 
-# --- REFERENCE §A-B: RV-40E --------------------------------------------------------------------
+# --- RV-40E (Wang 2021, Table 1) ---------------------------------------------------------------
 
 def test_rv_ratio_is_one_plus_z2_z5_over_z1() -> None:
     model = load_model(MODELS / "rv40e.yaml")
@@ -97,8 +99,10 @@ def test_rv_ratio_is_one_plus_z2_z5_over_z1() -> None:
     assert one_tooth.evaluate()["ratio"] == pytest.approx(121.0, rel=1e-12)
 
 
-def test_rv_efficiency_reference_b() -> None:
-    """REFERENCE §B: 0.287376 (0.94/0.94), 0.873043 (eta2 = 0.998), back-driven 0.867490."""
+def test_rv_efficiency_of_the_hand_closed_form() -> None:
+    """eta = [1 + (z2/z1) eta1 z5/(z5 - z4 eta2)]/i (benchmarks/sweep_rv.py): 0.287376
+    (0.94/0.94), 0.873043 (eta2 = 0.998); back-driven at eta2 = 0.998, 0.867490 (the
+    86.75 % of the README's RV table), equal to the single solve."""
     model = load_model(MODELS / "rv40e.yaml")
     f = derive_formulas(model)
     assert f.evaluate()["efficiency"] == pytest.approx(0.287376, abs=5e-7)
@@ -281,7 +285,7 @@ def test_given_ratio_and_lossy_coupling_symbols() -> None:
         "i_0": "ratio", "eta_0": "efficiency", "z_g": "teeth", "z_R": "teeth",
         "eta_1": "efficiency", "eta_3": "efficiency"}
     # Hand derivation: bevel stage i_0 with eta_0 (b1 drives); K-H-V stage of ratio -N,
-    # N = z_g/(z_R - z_g), efficiency eta_1/(N + 1 - N eta_1) (REFERENCE §C); the lossy
+    # N = z_g/(z_R - z_g), efficiency eta_1/(N + 1 - N eta_1) (K-H-V closed form); the lossy
     # coupling passes eta_3 of the power. Stages in series multiply.
     s = f.symbols
     n = s["z_g"] / (s["z_R"] - s["z_g"])
@@ -361,3 +365,40 @@ def test_readable_and_sign_helpers() -> None:
     sign, factors = sign_factors(e * (z4 - z5) / (z1 + z2), [z1, z2, z4, z5, e],
                                  {z4: 39, z5: 40})
     assert sign == -1 and factors == [z5 - z4]
+
+
+# --- the shared symbolic systems (formula/systems.py, also the sweep's symbolic backend) ---
+
+def test_train_systems_of_a_2kh_by_hand() -> None:
+    """Sun s (input: speed 1, torque 1), planets p on carrier c (output), ring fixed on the
+    frame f. Willis in c: s-p, i0 = -z_p/z_s; p-ring, i1 = z_r/z_p. By hand: the planet's
+    balance gives λ1 = i0 f0 λ0 with λ0 = -1 (the sun's), w_c = z_s/(z_s + z_r), and the
+    carrier's reaction -(1 + η0 η1 z_r/z_s): efficiency (1 + η0 η1 k)/(1 + k), k = z_r/z_s."""
+    from powergraph.analyses.formula.systems import solve_linear, train_systems
+
+    z_s, z_p, z_r, e0, e1 = sp.symbols("z_s z_p z_r eta_0 eta_1", positive=True)
+    systems = train_systems(["f", "s", "p", "c"], [("s", "p", "c"), ("p", "f", "c")],
+                            [-z_p / z_s, z_r / z_p], [e0, e1], {"f": 0, "s": 1}, {"s": 1},
+                            ["c", "f"])
+    assert systems.free == ("p", "c") and systems.balanced == ("s", "p")
+    _, (w_p, w_c) = solve_linear(systems.speed_matrix, systems.speed_rhs)
+    assert same(w_c, z_s / (z_s + z_r))
+    assert same(w_p, w_c - z_s / z_p * (1 - w_c))   # s-p Willis row, written out
+    _, forces = solve_linear(systems.force_matrix, systems.force_rhs)
+    assert forces[0] == -1 and same(forces[1], z_p * e0 / z_s)
+    t_c = systems.reactions["c"].xreplace(dict(zip(systems.forces, forces)))
+    assert same(t_c, -(1 + e0 * e1 * z_r / z_s))
+    k = z_r / z_s
+    assert same(-t_c * w_c, (1 + e0 * e1 * k) / (1 + k))
+
+
+def test_stencil_is_element_stencil_exact() -> None:
+    from powergraph.analyses.formula.systems import stencil
+    from powergraph.kinematics.elements import element_stencil
+
+    i, f = sp.symbols("i f")
+    assert stencil(i, f) == (1, -i * f, i * f - 1)
+    assert all(not c.atoms(sp.Float) for c in stencil(i, f))
+    # the same numbers as the float stencil
+    assert [float(c.subs({i: -2.5, f: 0.98})) for c in stencil(i, f)] == pytest.approx(
+        element_stencil(-2.5, 0.98), rel=1e-15)

@@ -71,9 +71,12 @@ def assert_matches_single(swept, j: int, single) -> None:
     assert bool(swept.self_locking.flat[j]) == single.self_locking
 
 
-# --- against the reference values (tests/data/published_values.yaml) ---------------------
+# --- the RV-40E against its hand closed form ---------------------------------------------
 
-def test_rv_reference_b_values() -> None:
+def test_rv_values_of_the_hand_closed_form() -> None:
+    # benchmarks/sweep_rv.py derives i = 1 + z2 z5/(z1 (z5 - z4)) = 121 and
+    # eta = [1 + (z2/z1) eta1 z5/(z5 - z4 eta2)]/i: 0.287376 (0.94, 0.94), 0.873043
+    # (eta2 = 0.998); L_12 = P (1 - 1/i)(1 - eta1) = 135.0744 W, L_45 = P (1 - eta) - L_12.
     r = sweep(model("rv40e.yaml"), {"links.1.efficiency": [0.94, 0.998]})
     assert r.efficiency.tolist() == pytest.approx([0.287376, 0.873043], abs=5e-7)
     assert r.ratio.tolist() == pytest.approx([121.0, 121.0], rel=1e-13)
@@ -423,7 +426,7 @@ def test_grid_csv_dict_and_curves() -> None:
 
 
 def test_progress_bar_unless_quiet(monkeypatch, capsys) -> None:
-    from powergraph.analyses.sweep import compiled
+    from powergraph.analyses.sweep import compile as compiled
 
     monkeypatch.setattr(compiled, "PROGRESS_DELAY", 0.0)
     values = {"links.1.efficiency": np.linspace(0.9, 1.0, 3000)}

@@ -1,4 +1,4 @@
-"""``powergraph formula MODEL [--latex] [--json] [--let NAME=EXPR]`` (issue 10)."""
+"""``powergraph formula MODEL [--latex] [--json] [--let NAME=EXPR]`` (docs/formula.md)."""
 from __future__ import annotations
 
 import json
@@ -43,7 +43,7 @@ def test_json_parses_and_matches_the_solver(capsys) -> None:
     assert _evaluate(data["ratio"], data["symbols"]) == pytest.approx(numeric.ratio, rel=1e-12)
     assert _evaluate(data["efficiency"], data["symbols"]) == pytest.approx(
         numeric.efficiency, rel=1e-12)
-    # REFERENCE §B: 0.287376 with both meshes at 0.94
+    # the hand closed form of benchmarks/sweep_rv.py: 0.287376 with both meshes at 0.94
     assert _evaluate(data["efficiency"], data["symbols"]) == pytest.approx(0.287376, abs=5e-7)
     assert [(d["link"], d["between"], d["driver"]) for d in data["directions"]] == [
         (0, [1, 2], 1), (1, [4, 5], 5)]

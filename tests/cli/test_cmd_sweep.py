@@ -1,7 +1,7 @@
 """``powergraph sweep MODEL --set PATH=START:STOP:N ... [-o FILE.csv] [--plot FILE]``.
 
 Expected values: single solves of the modified model (``powergraph.solve``) and the RV's
-ratio 1 + z2·z5/(z1·(z5 − z4)) (REFERENCE.md §A).
+ratio 1 + z2·z5/(z1·(z5 − z4)) (Willis' relation, derived in benchmarks/sweep_rv.py).
 """
 from __future__ import annotations
 

@@ -1,10 +1,12 @@
-"""Closed-form ratio and efficiency of any train, derived from its graph (issue 10).
+"""Closed-form ratio and efficiency of any train, derived from its graph.
 
 From a model, :func:`derive_formulas` gives the ratio as a rational function of the tooth
 numbers and the efficiency as a function of the tooth numbers and the basic efficiencies,
 for the power-direction pattern that holds at the model's values, with the conditions
 that keep that pattern (each driver keeps driving in its carrier's frame; no denominator
-vanishes). It mirrors the numeric solver (DESIGN §2-3) with sympy.
+vanishes). It mirrors the numeric solver (docs/theory.md) with sympy: the
+systems come from :mod:`~powergraph.analyses.formula.systems`, shared with the compiled
+sweep.
 
 Symbols: ``z_<component id>`` (tooth numbers), ``eta_<i>`` (basic efficiency of
 ``links[i]``: every mesh, and a coupling only when its efficiency is below 1),

@@ -15,10 +15,10 @@ from typing import Any, Mapping
 
 import sympy as sp
 
-from powergraph.analyses.formula.equations import body_speeds, torque_balance
 from powergraph.analyses.formula.readable import orient, readable, sign_factors
 from powergraph.analyses.formula.result import Condition, Direction, FormulaResult
 from powergraph.analyses.formula.symbols import SymbolTable, build_symbols
+from powergraph.analyses.formula.systems import TrainSystems, solve_linear, train_systems
 from powergraph.errors import MethodNotApplicableError
 from powergraph.kinematics import Element, elements_of
 from powergraph.model.spec import Model
@@ -61,19 +61,24 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     _check_solved(numeric)
     elements = elements_of(model)
     table = build_symbols(model, elements, relations)
-    values = {table.symbols[n]: i.value for n, i in table.info.items()}
+    values = {table.symbols[n]: v for n, v in table.values.items()}
     input_body = model.body_of[model.inputs[0].component]
     output_body = model.body_of[model.outputs[0].component]
-    speeds = body_speeds(model, elements, table.willis, input_body)
+    codes = {flow.link: _code(flow.driver, flow.a, flow.b) for flow in numeric.elements}
+    factors = [_factor(codes[el.link], table.efficiency[el.link]) for el in elements]
+    sign = 1 if numeric.input_power > 0 else -1  # powers keep the model's signs
+    systems = train_systems(
+        [body.id for body in model.bodies], [el.bodies for el in elements],
+        [table.willis[el.link] for el in elements], factors,
+        speeds={model.frame_body: 0, input_body: 1}, torques={input_body: sign},
+        reacting=[output_body, model.frame_body])
+    speeds = _speeds(systems, model.frame_body, input_body)
     w_out = speeds[output_body]
     if w_out == 0:
         raise MethodNotApplicableError("the output does not turn for independent tooth "
                                        "numbers: no ratio")
-    codes = {flow.link: _code(flow.driver, flow.a, flow.b) for flow in numeric.elements}
-    factors = [_factor(codes[el.link], table.efficiency[el.link]) for el in elements]
-    sign = 1 if numeric.input_power > 0 else -1  # powers keep the model's signs
-    forces, t_out = torque_balance(model, elements, table.willis, factors, input_body,
-                                   output_body, sign)
+    forces = _solved(systems.force_matrix, systems.force_rhs, "torque balances")
+    t_out = systems.reactions[output_body].xreplace(dict(zip(systems.forces, forces)))
     ratio = sp.cancel(1 / w_out)
     efficiency = sp.cancel(-sign * t_out * w_out)  # (-T_out w_out) / (T_in w_in), w_in = 1
     conditions = _power_conditions(elements, codes, factors, forces, speeds, table, values)
@@ -86,6 +91,29 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
         relations=MappingProxyType(dict(table.relations)),
         numeric=MappingProxyType({"ratio": numeric.ratio, "efficiency": numeric.efficiency}),
         model=model)
+
+
+def _solved(matrix: sp.Matrix, rhs: sp.Matrix, what: str) -> list[sp.Expr]:
+    """The unique solution of one of the train's systems, or why there is none."""
+    if matrix.rows > matrix.cols:
+        raise MethodNotApplicableError(
+            f"the {what} have no solution for independent tooth numbers: the train moves "
+            "only because its values satisfy a relation; state it with a relation "
+            "(--let NAME=EXPR)")
+    det, solution = solve_linear(matrix, rhs) if matrix.is_square else (0, [])
+    if det == 0:
+        raise MethodNotApplicableError(
+            f"the {what} do not determine a unique solution (e.g. load sharing between "
+            "parallel paths that statics cannot fix); no closed form")
+    return solution
+
+
+def _speeds(systems: TrainSystems, frame: str, input_body: str) -> dict[str, sp.Expr]:
+    """Every body's speed divided by the input's speed."""
+    values = _solved(systems.speed_matrix, systems.speed_rhs, "Willis equations")
+    speeds = dict(zip(systems.free, values))
+    speeds.update({frame: sp.Integer(0), input_body: sp.Integer(1)})
+    return speeds
 
 
 def _directions(elements: tuple[Element, ...], codes: Mapping[int, int],

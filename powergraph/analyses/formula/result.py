@@ -10,8 +10,7 @@ import sympy as sp
 
 from powergraph.analyses.formula.compiled import CompiledFormula, compile_formula
 from powergraph.analyses.formula.readable import display
-from powergraph.analyses.formula.symbols import SymbolInfo
-from powergraph.errors import UsageError
+from powergraph.analyses.formula.symbols import SymbolInfo, values_of
 from powergraph.model.spec import Model
 
 _FLIP = {">": "<", "<": ">", "!=": "!=", "=": "="}
@@ -131,7 +130,7 @@ class FormulaResult:
     @property
     def values(self) -> dict[str, float]:
         """``{symbol name: value in the model}``."""
-        return {name: i.value for name, i in self.info.items()}
+        return values_of(self.info)
 
     @property
     def paths(self) -> dict[str, str]:
@@ -160,20 +159,12 @@ class FormulaResult:
 
     def evaluate(self, **values: float) -> dict[str, float]:
         """Ratio and efficiency at the model's values, with ``values`` (by name) changed."""
-        self._check_names(values)
         out = self._compiled(**values)
         return {"ratio": float(out["ratio"]), "efficiency": float(out["efficiency"])}
 
     def holds(self, **values: float) -> bool:
         """Whether every condition holds at the model's values with ``values`` changed."""
-        self._check_names(values)
         return bool(self._compiled(**values)["valid"])
-
-    def _check_names(self, values: Mapping[str, float]) -> None:
-        unknown = set(values) - set(self.symbols)
-        if unknown:
-            raise UsageError(f"unknown symbol(s) {', '.join(sorted(unknown))}; the formulas "
-                             f"use {', '.join(self.symbols)}")
 
     def latex(self) -> dict[str, Any]:
         """LaTeX of the ratio, the efficiency and the conditions."""

@@ -71,11 +71,16 @@ class SymbolTable:
     @property
     def values(self) -> dict[str, float]:
         """``{name: value in the model}`` of every free symbol."""
-        return {name: i.value for name, i in self.info.items()}
+        return values_of(self.info)
 
     @property
     def positive(self) -> frozenset[sp.Symbol]:
         return frozenset(self.symbols[n] for n, i in self.info.items() if i.positive)
+
+
+def values_of(info: Mapping[str, SymbolInfo]) -> dict[str, float]:
+    """``{symbol name: value in the model}``."""
+    return {name: i.value for name, i in info.items()}
 
 
 def _identifier(text: str) -> str:
@@ -189,7 +194,7 @@ def parse_relations(relations: Mapping[str, Any], symbols: Mapping[str, sp.Symbo
 
 def _check_holds(target: sp.Symbol, expr: sp.Expr, symbols: Mapping[str, sp.Symbol],
                  info: Mapping[str, SymbolInfo]) -> None:
-    values = {symbols[n]: i.value for n, i in info.items()}
+    values = {symbols[n]: v for n, v in values_of(info).items()}
     lhs, rhs = info[str(target)].value, float(expr.subs(values))
     if abs(lhs - rhs) > 1e-12 * max(1.0, abs(lhs)):
         raise UsageError(f"relation {target} = {expr} does not hold at the model's values "

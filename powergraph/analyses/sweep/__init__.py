@@ -1,4 +1,4 @@
-"""Compiled, vectorised design sweeps (issue 9).
+"""Compiled, vectorised design sweeps (docs/sweep.md).
 
 Compile a model once into an evaluator over arrays of model values (tooth numbers, mesh
 efficiencies, ratios, port speeds and loads) that returns arrays of ratio, efficiency,
@@ -17,11 +17,10 @@ Examples
 """
 from __future__ import annotations
 
-from powergraph.analyses.sweep.compiled import CompiledSweep, compile_sweep, sweep
-from powergraph.analyses.sweep.engine import STATUS
-from powergraph.analyses.sweep.grid import cartesian, parse_set, parse_sets
-from powergraph.analyses.sweep.paths import Parameter, parse_path
-from powergraph.analyses.sweep.result import SweepResult
+from powergraph.analyses.sweep.compile import CompiledSweep, compile_sweep, sweep
+from powergraph.analyses.sweep.paths import (Parameter, cartesian, parse_path, parse_set,
+                                             parse_sets)
+from powergraph.analyses.sweep.result import STATUS, SweepResult
 
 __all__ = ["CompiledSweep", "Parameter", "STATUS", "SweepResult", "cartesian",
            "compile_sweep", "parse_path", "parse_set", "parse_sets", "sweep"]

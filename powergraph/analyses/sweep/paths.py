@@ -1,6 +1,7 @@
-"""Sweep parameters: the model values a PATH addresses, and checks on the values swept.
+"""What a sweep varies: the model values a PATH addresses, checks on the values swept, and
+the ``PATH=START:STOP:N`` settings of the CLI's ``--set`` with their Cartesian grid.
 
-A PATH names one number of the model file (SPEC §1):
+A PATH names one number of the model file (docs/format.md):
 
 =============================  =========================================================
 ``components.<id>.teeth``      tooth number (integer >= 1); changes the Willis ratio of
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -32,17 +34,10 @@ PORT_FIELDS = ("speed", "power", "torque")
 
 @dataclass(frozen=True)
 class Parameter:
-    """One swept model value.
-
-    Attributes
-    ----------
-    path : str
-        The PATH as the user wrote it (the CSV column name).
-    kind : str
-        ``teeth``, ``efficiency``, ``ratio``, ``speed``, ``power`` or ``torque``.
-    targets : tuple
-        Component id (teeth), link indices (efficiency, ratio) or port index (ports).
-    """
+    """One swept model value: the ``path`` as the user wrote it (the CSV column name), its
+    ``kind`` (``teeth``, ``efficiency``, ``ratio``, ``speed``, ``power`` or ``torque``) and
+    its ``targets``: a component id (teeth), link indices (efficiency, ratio) or a port
+    index (ports)."""
 
     path: str
     kind: str
@@ -109,11 +104,17 @@ def _index(text: str, size: int, what: str, path: str) -> int:
     return index
 
 
-def _link_path(model: Model, path: str, rest: str) -> Parameter:
+def _where_field(rest: str, fields: tuple[str, ...], what: str, path: str) -> tuple[str, str]:
+    """``<where>.<field>`` of a link or port PATH, the field one that can be swept."""
     where, _, field = rest.partition(".")
-    if field not in LINK_FIELDS:
-        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a link's sweepable "
-                         f"values are {', '.join(LINK_FIELDS)})", path)
+    if field not in fields:
+        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a {what}'s sweepable "
+                         f"values are {', '.join(fields)})", path)
+    return where, field
+
+
+def _link_path(model: Model, path: str, rest: str) -> Parameter:
+    where, field = _where_field(rest, LINK_FIELDS, "link", path)
     if where == "*":
         if field != "efficiency":
             raise UsageError(f"sweep PATH {path!r}: only links.*.efficiency addresses every "
@@ -133,10 +134,7 @@ def _link_path(model: Model, path: str, rest: str) -> Parameter:
 
 
 def _port_path(model: Model, path: str, rest: str) -> Parameter:
-    where, _, field = rest.partition(".")
-    if field not in PORT_FIELDS:
-        raise ModelError(f"{field or '(nothing)'!r} cannot be swept (a port's sweepable "
-                         f"values are {', '.join(PORT_FIELDS)})", path)
+    where, field = _where_field(rest, PORT_FIELDS, "port", path)
     port = model.ports[_index(where, len(model.ports), "port", path)]
     other = {"power": "torque", "torque": "power"}.get(field)
     if other and getattr(port, other) is not None:
@@ -229,6 +227,37 @@ def check_values(param: Parameter, array: np.ndarray) -> np.ndarray:
     return array
 
 
+def broadcast_values(params: Sequence[Parameter],
+                     values: Mapping[str, Any]) -> tuple[dict, tuple[int, ...]]:
+    """The checked arrays of exactly the PATHs of ``params``, and their broadcast shape.
+
+    Raises
+    ------
+    UsageError
+        Not a mapping, missing or unknown PATHs, arrays that do not broadcast.
+    ModelError
+        A value out of range (named by its PATH).
+    """
+    paths = [p.path for p in params]
+    if not isinstance(values, Mapping):
+        raise UsageError("sweep values must be a mapping PATH -> array")
+    missing = [p for p in paths if p not in values]
+    unknown = [p for p in values if p not in paths]
+    if missing or unknown:
+        raise UsageError("sweep values must give exactly the compiled PATHs "
+                         f"({', '.join(paths)})"
+                         + (f"; missing {', '.join(missing)}" if missing else "")
+                         + (f"; not compiled: {', '.join(map(str, unknown))}"
+                            if unknown else ""))
+    arrays = {p.path: check_values(p, as_array(p, values[p.path])) for p in params}
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{p} {a.shape}" for p, a in arrays.items())
+        raise UsageError(f"the swept arrays do not broadcast together: {shapes}") from None
+    return arrays, shape
+
+
 def _bad_values(kind: str, array: np.ndarray) -> np.ndarray:
     finite = np.isfinite(array)
     if kind == "teeth":
@@ -245,3 +274,117 @@ def _rule(kind: str) -> str:
             "efficiency": "efficiency must be in (0, 1]",
             "ratio": "ratio must be a non-zero finite number"}.get(kind, f"{kind} must be "
                                                                          "finite")
+
+
+# --- --set PATH=START:STOP:N and grids ------------------------------------------------
+
+#: Largest grid the CLI builds (variants).
+MAX_VARIANTS = 50_000_000
+
+
+def parse_set(model: Model, text: str) -> tuple[str, np.ndarray]:
+    """Parse one ``PATH=START:STOP:N`` (N evenly spaced values, ends included).
+
+    ``PATH=V1,V2,...`` (a list) and ``PATH=V`` (one value) are accepted too. Port speeds,
+    powers and torques may carry units (``ports.0.speed=1000rpm:3000rpm:5``). Tooth
+    numbers must come out whole.
+
+    Raises
+    ------
+    UsageError
+        Bad syntax (no ``=``, N not a whole number >= 1, a value that is not a number).
+    ModelError
+        A PATH the model does not have, or teeth that would not be whole numbers.
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> rv = load_model("models/rv40e.yaml")
+    >>> parse_set(rv, "components.5.teeth=38:42:5")[1].tolist()
+    [38.0, 39.0, 40.0, 41.0, 42.0]
+    >>> parse_set(rv, "links.1.efficiency=0.9,0.95,1")[1].tolist()
+    [0.9, 0.95, 1.0]
+    """
+    path, sep, spec = text.partition("=")
+    path, spec = path.strip(), spec.strip()
+    if not sep or not path or not spec:
+        raise UsageError(f"--set {text!r}: expected PATH=START:STOP:N "
+                         "(e.g. links.1.efficiency=0.9:1:11)")
+    param = parse_path(model, path)
+    if ":" in spec:
+        values = _range(text, spec, param.kind, path)
+    else:
+        values = np.array([_number(text, item, param.kind, path) for item in spec.split(",")])
+    if param.kind == "teeth":
+        values = _whole(text, values, path)
+    return path, values
+
+
+def _range(text: str, spec: str, kind: str, path: str) -> np.ndarray:
+    parts = spec.split(":")
+    if len(parts) != 3:
+        raise UsageError(f"--set {text!r}: a range is START:STOP:N (three fields)")
+    start, stop = (_number(text, p, kind, path) for p in parts[:2])
+    if not re.fullmatch(r"\s*\d+\s*", parts[2]) or int(parts[2]) < 1:
+        raise UsageError(f"--set {text!r}: N must be a whole number >= 1, got {parts[2]!r}")
+    count = int(parts[2])
+    if count == 1 and start != stop:
+        raise UsageError(f"--set {text!r}: N = 1 needs START = STOP")
+    return np.linspace(start, stop, count)
+
+
+def _number(text: str, item: str, kind: str, path: str) -> float:
+    item = item.strip()
+    try:
+        return float(item)
+    except ValueError:
+        pass
+    if kind in PORT_FIELDS and item:
+        from powergraph.model.units import parse_quantity
+
+        try:
+            return parse_quantity(item, kind, path)
+        except ModelError as exc:
+            raise UsageError(f"--set {text!r}: {exc.message}") from None
+    raise UsageError(f"--set {text!r}: {item!r} is not a number")
+
+
+def _whole(text: str, values: np.ndarray, path: str) -> np.ndarray:
+    rounded = np.round(values)
+    off = np.abs(values - rounded) > 1e-9
+    if np.any(off):
+        raise ModelError(f"teeth must be whole numbers, but --set {text!r} gives "
+                         f"{values[off][0]:g}; choose START, STOP and N so that the step "
+                         "(STOP - START)/(N - 1) is whole", path)
+    return rounded
+
+
+def parse_sets(model: Model, texts: Sequence[str]) -> dict[str, np.ndarray]:
+    """Parse several ``--set`` texts; a PATH may appear only once."""
+    out: dict[str, np.ndarray] = {}
+    for text in texts:
+        path, values = parse_set(model, text)
+        if path in out:
+            raise UsageError(f"--set {path} is given twice")
+        out[path] = values
+    return out
+
+
+def cartesian(sets: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The Cartesian grid of several value lists, as open (broadcastable) arrays.
+
+    The first PATH varies slowest; the sweep's arrays then have shape
+    ``(N1, N2, ...)`` and its CSV rows follow that order.
+
+    Examples
+    --------
+    >>> g = cartesian({"a": np.array([1.0, 2.0]), "b": np.array([3.0, 4.0, 5.0])})
+    >>> g["a"].shape, g["b"].shape
+    ((2, 1), (1, 3))
+    """
+    total = int(np.prod([len(v) for v in sets.values()], dtype=np.int64)) if sets else 0
+    if total > MAX_VARIANTS:
+        raise UsageError(f"the grid has {total:,} variants (more than {MAX_VARIANTS:,}); "
+                         "use fewer points")
+    grids = np.ix_(*[np.asarray(v, float) for v in sets.values()])
+    return dict(zip(sets, grids))

@@ -3,13 +3,15 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
 
-from powergraph.analyses.sweep.engine import STATUS
-
-#: Columns after the PATHs in the CSV (SPEC §2, issue 9); ``extra=True`` adds the rest.
+#: Status codes of a variant (``SweepResult.status``), by value.
+STATUS = ("ok", "cycle", "unsettled", "speeds", "loads")
+OK, CYCLE, UNSETTLED, SPEEDS, LOADS = range(5)
+#: Columns after the PATHs in the CSV; ``extra=True`` adds the rest.
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
                  "status")
@@ -44,7 +46,7 @@ class SweepResult:
         The variant was solved: its directions settled and its speeds and loads are
         determined. Where False, ``status`` says why and the powers are NaN.
     status : ndarray of int8
-        Index into :data:`~powergraph.analyses.sweep.engine.STATUS`: ``ok``, ``cycle``
+        Index into :data:`~powergraph.analyses.sweep.STATUS`: ``ok``, ``cycle``
         (the directions cycle: no consistent pattern), ``unsettled``, ``speeds`` (Willis
         rows singular), ``loads`` (loads not determined).
     passes : ndarray
@@ -67,6 +69,24 @@ class SweepResult:
     status: np.ndarray
     passes: np.ndarray
     backend: str
+
+    @classmethod
+    def of(cls, name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
+           outputs: Any, links: tuple[int, ...], backend: str) -> "SweepResult":
+        """The result of a run from its swept ``arrays`` and its flat ``outputs``
+        (:class:`~powergraph.analyses.sweep.evaluate.Outputs`), shaped to ``shape``."""
+        shaped = lambda a: a.reshape(shape)  # noqa: E731
+        by_link = lambda rows: MappingProxyType(  # noqa: E731
+            {link: shaped(rows[k]) for k, link in enumerate(links)})
+        return cls(name=name, parameters=MappingProxyType(
+                       {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
+                   ratio=shaped(outputs.ratio), efficiency=shaped(outputs.efficiency),
+                   input_power=shaped(outputs.input_power),
+                   output_power=shaped(outputs.output_power),
+                   total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
+                   drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
+                   converged=shaped(outputs.status == OK), status=shaped(outputs.status),
+                   passes=shaped(outputs.passes), backend=backend)
 
     @property
     def shape(self) -> tuple[int, ...]:

@@ -1,29 +1,33 @@
-"""Compile a model once, evaluate it over arrays of parameters (issue 9).
+"""Compile a model once into an evaluator over arrays of its values.
 
-Compiling resolves the PATHs and the train's fixed structure, solves its speed and force
-systems symbolically (or prepares batched numeric solves) and compiles the closed form of
-the model's own direction pattern. Evaluating runs in chunks: each chunk's variants go to
-the closed forms whose direction pattern provably holds for them, the rest through the
-general vectorised iteration — whose most common patterns get closed forms of their own
-(at most :data:`MAX_CLOSED_FORMS`), so a sweep across a direction change stays fast.
+Compiling resolves the PATHs (:mod:`~powergraph.analyses.sweep.paths`) and the train's
+fixed structure (:class:`Layout`: which body each element's gear a, gear b and carrier is
+on, which ports give a speed and which a load), then builds a backend
+(:mod:`~powergraph.analyses.sweep.backends`: the speed and force systems solved
+symbolically and compiled, or batched numeric solves) and the closed form of the model's
+own direction pattern. Evaluating runs in chunks (:mod:`~powergraph.analyses.sweep.evaluate`):
+each chunk's variants go to the closed forms whose direction pattern provably holds for
+them, the rest through the general vectorised iteration — whose most common patterns get
+closed forms of their own (at most :data:`MAX_CLOSED_FORMS`), so a sweep across a
+direction change stays fast.
 """
 from __future__ import annotations
 
 import sys
-from types import MappingProxyType
-from typing import Any, Mapping, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from typing import Any, Callable, Iterator, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
-from powergraph.analyses.sweep import engine, symbolic
-from powergraph.analyses.sweep.dispatch import evaluate_chunk
-from powergraph.analyses.sweep.layout import Layout, layout_of
-from powergraph.analyses.sweep.numeric import NumericBackend
-from powergraph.analyses.sweep.paths import Parameter, as_array, check_values, parse_paths
+from powergraph.analyses.sweep import backends
+from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
+from powergraph.analyses.sweep.paths import Parameter, broadcast_values, parse_paths
 from powergraph.analyses.sweep.result import SweepResult
 from powergraph.errors import UsageError
-from powergraph.kinematics import elements_of
+from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.statics.equilibrium import loads_of, solve_equilibrium
 
 #: Variants evaluated at once: small enough to keep the work arrays in cache (measured
 #: fastest on the RV benchmark among 8k, 12k, 16k, 24k, 32k and 64k).
@@ -34,6 +38,60 @@ BACKENDS = ("auto", "symbolic", "numeric")
 #: Most direction patterns compiled to closed forms per evaluator.
 MAX_CLOSED_FORMS = 4
 
+
+class Load(NamedTuple):
+    """A port whose power or torque is given."""
+
+    body: int
+    port: int
+    kind: str      # "power" or "torque" (the first input's default 1 W is a power)
+    role: str      # "input" or "output"
+
+
+@dataclass(frozen=True)
+class Layout:
+    """What a sweep keeps fixed: the train's structure, as indices into ``model.bodies``.
+
+    What varies are the Willis ratios (from teeth or a mesh's ``ratio``), the
+    efficiencies and the ports' speeds, powers and torques.
+    """
+
+    n_bodies: int
+    links: tuple[int, ...]              # link index of each element
+    kinds: tuple[str, ...]              # "mesh" / "coupling" per element
+    body_a: tuple[int, ...]
+    body_b: tuple[int, ...]
+    body_c: tuple[int, ...]
+    frame: int
+    teeth_ratios: tuple[tuple[int, str, str], ...]   # (element, gear a, gear b): z_b/z_a
+    signs: tuple[float, ...]            # Willis ratio = sign * magnitude, per element
+    speed_ports: tuple[tuple[int, int | None], ...]   # (body, port index or None=default)
+    loads: tuple[Load, ...]
+    unknown: tuple[int, ...]            # bodies whose external torque is solved for
+    inputs: tuple[int, ...]             # body of each input port
+    outputs: tuple[int, ...]            # body of each output port
+    ratio_bodies: tuple[int, int] | None   # (input, output) body for the ratio
+    determinate: bool                   # load sharing fixed by statics at the base values
+
+    @property
+    def n_elements(self) -> int:
+        return len(self.links)
+
+    @property
+    def places(self) -> tuple[tuple[int, int, int], ...]:
+        """(body of gear a, of gear b, of the carrier) of each element."""
+        return tuple(zip(self.body_a, self.body_b, self.body_c))
+
+    @property
+    def free_bodies(self) -> tuple[int, ...]:
+        """Bodies whose speed is solved for."""
+        known = {self.frame} | {body for body, _ in self.speed_ports}
+        return tuple(j for j in range(self.n_bodies) if j not in known)
+
+    @property
+    def balance_bodies(self) -> tuple[int, ...]:
+        """Bodies with no unknown external torque: their balance fixes the element forces."""
+        return tuple(j for j in range(self.n_bodies) if j not in set(self.unknown))
 
 class CompiledSweep:
     """A model compiled into an evaluator over arrays of the swept values.
@@ -80,14 +138,14 @@ class CompiledSweep:
         self.model = model
         self.parameters: tuple[Parameter, ...] = parse_paths(model, paths)
         self.layout: Layout = layout_of(model, self.parameters)
-        if backend == "symbolic" and not symbolic.applies(self.layout):
+        if backend == "symbolic" and not backends.applies(self.layout):
             raise UsageError("the symbolic backend needs square, statically determinate "
-                             f"systems of at most {symbolic.MAX_SYMBOLIC} unknowns; "
+                             f"systems of at most {backends.MAX_SYMBOLIC} unknowns; "
                              "use backend='numeric'")
         use_symbolic = backend == "symbolic" or (backend == "auto"
-                                                 and symbolic.applies(self.layout))
-        self.backend = symbolic.SymbolicBackend(self.layout) if use_symbolic \
-            else NumericBackend(self.layout)
+                                                 and backends.applies(self.layout))
+        self.backend = backends.SymbolicBackend(self.layout) if use_symbolic \
+            else backends.NumericBackend(self.layout)
         self._base = _base_values(model, self.layout)
         self._element = {link: k for k, link in enumerate(self.layout.links)}
         self._moving = _moving(self.layout, self.parameters, self._base)
@@ -129,24 +187,25 @@ class CompiledSweep:
         ModelError
             A value out of range (named by its PATH).
         """
-        arrays, shape = self._arrays(values)
+        arrays, shape = broadcast_values(self.parameters, values)
         n = int(np.prod(shape, dtype=np.int64))
         flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
                 for path, a in arrays.items()}
         step = max(1, int(chunk_size))
-        outputs = _Outputs(n, self.layout.n_elements)
-        with _progress(n, step, quiet) as bar:
+        outputs = Outputs.empty(n, self.layout.n_elements)
+        with _progress(n, step, quiet) as update:
             for start in range(0, n, step):
                 stop = min(n, start + step)
                 chunk = self._chunk(flat, start, stop)
                 learned = evaluate_chunk(self.layout, self.backend, chunk,
-                                         outputs.views(start, stop), self._closed_forms,
+                                         outputs.part(start, stop), self._closed_forms,
                                          self._moving if self._learning else None)
                 if learned is not None:
                     self._add_closed_form(*learned)
                 self._closed_forms.sort(key=lambda form: -form.hits)
-                bar.update(stop - start)
-        return self._result(outputs, arrays, shape)
+                update(stop - start)
+        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
+                              self.backend.name)
 
     evaluate = __call__
 
@@ -159,35 +218,14 @@ class CompiledSweep:
 
     @property
     def _learning(self) -> bool:
-        return isinstance(self.backend, symbolic.SymbolicBackend) \
+        return isinstance(self.backend, backends.SymbolicBackend) \
             and len(self._closed_forms) < MAX_CLOSED_FORMS
 
     def _add_closed_form(self, start: tuple[int, ...], codes: tuple[int, ...]) -> None:
         if self._learning and (start, codes) not in self.patterns:
-            self._closed_forms.append(self.backend.specialise(self._moving, codes, start))
+            self._closed_forms.append(self.backend.closed_form(self._moving, codes, start))
 
-    # --- values -------------------------------------------------------------------------
-    def _arrays(self, values: Mapping[str, Any]) -> tuple[dict, tuple[int, ...]]:
-        if not isinstance(values, Mapping):
-            raise UsageError("sweep values must be a mapping PATH -> array")
-        missing = [p for p in self.paths if p not in values]
-        unknown = [p for p in values if p not in self.paths]
-        if missing or unknown:
-            raise UsageError("sweep values must give exactly the compiled PATHs "
-                             f"({', '.join(self.paths)})"
-                             + (f"; missing {', '.join(missing)}" if missing else "")
-                             + (f"; not compiled: {', '.join(map(str, unknown))}"
-                                if unknown else ""))
-        arrays = {p.path: check_values(p, as_array(p, values[p.path]))
-                  for p in self.parameters}
-        try:
-            shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
-        except ValueError:
-            shapes = ", ".join(f"{p} {a.shape}" for p, a in arrays.items())
-            raise UsageError(f"the swept arrays do not broadcast together: {shapes}") from None
-        return arrays, shape
-
-    def _chunk(self, flat: dict, start: int, stop: int) -> engine.Chunk:
+    def _chunk(self, flat: dict, start: int, stop: int) -> Chunk:
         base = self._base
         magnitudes, etas = list(base["ratios"]), list(base["efficiencies"])
         speeds, loads = list(base["speeds"]), list(base["loads"])
@@ -205,51 +243,82 @@ class CompiledSweep:
                 speeds[self._speed_slot[param.targets[0]]] = value
             else:
                 loads[self._load_slot[param.targets[0]]] = value
-        for tr in self.layout.teeth_ratios:
-            magnitudes[tr.element] = teeth[tr.gear_b] / teeth[tr.gear_a]
-        return engine.Chunk(n=stop - start, magnitudes=magnitudes, efficiencies=etas,
-                            speeds=speeds, loads=loads)
-
-    def _result(self, outputs: "_Outputs", arrays: dict, shape) -> SweepResult:
-        shaped = lambda a: a.reshape(shape)  # noqa: E731
-        links = self.layout.links
-        return SweepResult(
-            name=self.model.name,
-            parameters=MappingProxyType({p: np.broadcast_to(a, shape)
-                                         for p, a in arrays.items()}),
-            ratio=shaped(outputs.ratio), efficiency=shaped(outputs.efficiency),
-            input_power=shaped(outputs.input_power),
-            output_power=shaped(outputs.output_power),
-            total_loss=shaped(outputs.total_loss),
-            losses=MappingProxyType({link: shaped(outputs.losses[k])
-                                     for k, link in enumerate(links)}),
-            drivers=MappingProxyType({link: shaped(outputs.codes[k])
-                                      for k, link in enumerate(links)}),
-            self_locking=shaped(outputs.self_locking),
-            converged=shaped(outputs.status == engine.OK), status=shaped(outputs.status),
-            passes=shaped(outputs.passes), backend=self.backend.name)
+        for k, gear_a, gear_b in self.layout.teeth_ratios:
+            magnitudes[k] = teeth[gear_b] / teeth[gear_a]
+        return Chunk(n=stop - start, magnitudes=magnitudes, efficiencies=etas,
+                     speeds=speeds, loads=loads)
 
 
-class _Outputs:
-    """The full-length result arrays, filled chunk by chunk through views."""
+def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
+    """Resolve the structure of ``model`` with ``params`` swept (validated on a probe).
 
-    FLOATS = ("ratio", "efficiency", "input_power", "output_power", "total_loss")
+    The probe is the model with every swept port value set (to its value, or 1), solved
+    once by the validated single solver: wrong DOF, speeds that do not fix the motion or
+    loads that are not determined raise the single solver's own ModelError.
+    """
+    probe = _probe(model, params)
+    elements = elements_of(probe)
+    loads = loads_of(probe, solve_speeds(probe))
+    eq = solve_equilibrium(probe, elements, loads, [1.0] * len(elements))
+    column = {body.id: j for j, body in enumerate(model.bodies)}
+    body = lambda component: column[probe.body_of[component]]  # noqa: E731
+    inputs = tuple(body(p.component) for p in probe.inputs)
+    outputs = tuple(body(p.component) for p in probe.outputs)
+    teeth, signs = _teeth_ratios(model, params, elements)
+    return Layout(
+        n_bodies=len(model.bodies), links=tuple(e.link for e in elements),
+        kinds=tuple(e.kind for e in elements),
+        body_a=tuple(column[e.body_a] for e in elements),
+        body_b=tuple(column[e.body_b] for e in elements),
+        body_c=tuple(column[e.body_c] for e in elements),
+        frame=column[model.frame_body], teeth_ratios=teeth, signs=signs,
+        speed_ports=_speed_ports(probe, body), loads=_loads(probe, body),
+        unknown=tuple(column[b] for b in loads.unknown), inputs=inputs, outputs=outputs,
+        ratio_bodies=(inputs[0], outputs[0]) if len(inputs) == len(outputs) == 1 else None,
+        determinate=not eq.indeterminate)
 
-    def __init__(self, n: int, n_el: int) -> None:
-        for name in self.FLOATS:
-            setattr(self, name, np.empty(n))
-        self.losses = np.empty((n_el, n))
-        self.codes = np.empty((n_el, n), dtype=np.int8)
-        self.self_locking = np.empty(n, dtype=bool)
-        self.status = np.empty(n, dtype=np.int8)
-        self.passes = np.empty(n, dtype=np.int8)
 
-    def views(self, start: int, stop: int) -> engine.Views:
-        part = slice(start, stop)
-        return engine.Views(**{name: getattr(self, name)[part] for name in self.FLOATS},
-                            losses=self.losses[:, part], codes=self.codes[:, part],
-                            self_locking=self.self_locking[part], status=self.status[part],
-                            passes=self.passes[part])
+def _probe(model: Model, params: tuple[Parameter, ...]) -> Model:
+    for param in params:
+        if param.is_port:
+            (index,) = param.targets
+            if getattr(model.ports[index], param.kind) is None:
+                model = model.with_port(index, **{param.kind: 1.0})
+    return model
+
+
+def _speed_ports(probe: Model, body: Callable) -> tuple[tuple[int, int | None], ...]:
+    given = [(body(p.component), p.index) for p in probe.ports if p.speed is not None]
+    if not given and degrees_of_freedom(probe) == 1:
+        given = [(body(probe.inputs[0].component), None)]
+    return tuple(given)
+
+
+def _loads(probe: Model, body: Callable) -> tuple[Load, ...]:
+    loaded = [p for p in probe.ports if p.power is not None or p.torque is not None]
+    if not loaded:   # the first input feeds 1 W
+        first = probe.inputs[0]
+        return (Load(body(first.component), first.index, "power", "input"),)
+    return tuple(Load(body(p.component), p.index,
+                      "torque" if p.torque is not None else "power", p.role)
+                 for p in loaded)
+
+
+def _teeth_ratios(model: Model, params: tuple[Parameter, ...], elements) -> tuple:
+    """Meshes whose ratio follows from a swept tooth number (and whose ratio is not
+    swept), and the sign of every element's Willis ratio."""
+    swept_teeth = {p.targets[0] for p in params if p.kind == "teeth"}
+    swept_ratio = {t for p in params if p.kind == "ratio" for t in p.targets}
+    out, signs = [], [1.0] * len(elements)
+    for k, el in enumerate(elements):
+        link = model.links[el.link]
+        if el.kind != "mesh" or link.ratio is not None or link.index in swept_ratio:
+            continue
+        if swept_teeth & {el.a, el.b}:
+            a, b = model.components[el.a], model.components[el.b]
+            signs[k] = 1.0 if (a.internal or b.internal) else -1.0
+            out.append((k, el.a, el.b))
+    return tuple(out), tuple(signs)
 
 
 def _base_values(model: Model, layout: Layout) -> dict:
@@ -294,27 +363,18 @@ def _load_value(port, kind: str) -> float:
     return 1.0 if value is None else value
 
 
-class _progress:
-    """A tqdm bar on stderr for long runs (delayed, so short runs print nothing)."""
+@contextmanager
+def _progress(n: int, chunk_size: int, quiet: bool) -> Iterator[Callable[[int], Any]]:
+    """``update(count)`` of a tqdm bar on stderr for long runs (delayed, so short runs
+    print nothing)."""
+    if quiet or n <= chunk_size:
+        yield lambda count: None
+        return
+    from tqdm import tqdm
 
-    def __init__(self, n: int, chunk_size: int, quiet: bool) -> None:
-        self.bar = None
-        if not quiet and n > chunk_size:
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=n, unit="variant", unit_scale=True, file=sys.stderr,
-                            delay=PROGRESS_DELAY, desc="sweep", leave=False)
-
-    def __enter__(self) -> "_progress":
-        return self
-
-    def update(self, count: int) -> None:
-        if self.bar is not None:
-            self.bar.update(count)
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.close()
+    with tqdm(total=n, unit="variant", unit_scale=True, file=sys.stderr,
+              delay=PROGRESS_DELAY, desc="sweep", leave=False) as bar:
+        yield bar.update
 
 
 def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> CompiledSweep:

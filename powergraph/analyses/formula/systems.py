@@ -1,0 +1,139 @@
+"""A train's kinematic and static systems with symbols instead of numbers: the one
+symbolic derivation shared by :func:`~powergraph.analyses.formula.derive_formulas` and the
+compiled sweep's symbolic backend (:mod:`powergraph.analyses.sweep.backends`).
+
+Every coefficient comes from :func:`powergraph.kinematics.elements.element_stencil`:
+
+- **speeds**: one Willis row per element, ``stencil(i) · (w_a, w_b, w_c) = 0``, over the
+  bodies whose speed is not given (the given ones move to the right-hand side);
+- **forces**: element ``k`` applies ``stencil(i_k, f_k) · λ_k`` to (gear a, gear b,
+  carrier); each body's element torques plus its external torque sum to zero. The
+  balances of the bodies without an unknown external torque fix the forces ``λ``; the
+  others give those bodies' external torques (the *reactions*).
+
+The factors ``f_k`` are those of one direction pattern (``η``, ``1/η`` or 1), or symbols
+to be replaced later. Systems are solved as adjugate over determinant (fraction-free; the
+determinant vanishes only where the system itself is singular). The method is described
+in docs/theory.md.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Hashable, Mapping, Sequence
+
+import sympy as sp
+
+from powergraph.kinematics.elements import element_stencil
+
+
+@dataclass(frozen=True)
+class TrainSystems:
+    """The two linear systems of a train, ``matrix · unknowns = rhs``.
+
+    ``free`` are the bodies whose speeds the speed system solves for (its columns);
+    ``balanced`` the bodies whose balances are the force system's rows (its columns are
+    the elements' forces ``forces``). ``reactions`` gives the external torque of every
+    other body as an expression in ``forces``.
+    """
+
+    speed_matrix: sp.Matrix
+    speed_rhs: sp.Matrix
+    free: tuple[Hashable, ...]
+    force_matrix: sp.Matrix
+    force_rhs: sp.Matrix
+    balanced: tuple[Hashable, ...]
+    forces: tuple[sp.Symbol, ...]
+    reactions: Mapping[Hashable, sp.Expr]
+
+
+def train_systems(bodies: Sequence[Hashable], elements: Sequence[tuple[Hashable, ...]],
+                  ratios: Sequence[Any], factors: Sequence[Any],
+                  speeds: Mapping[Hashable, Any], torques: Mapping[Hashable, Any],
+                  reacting: Sequence[Hashable]) -> TrainSystems:
+    """Build a train's symbolic speed and force systems for one direction pattern.
+
+    Parameters
+    ----------
+    bodies : sequence
+        Every body (ids or indices).
+    elements : sequence of (body of gear a, body of gear b, body of the carrier)
+    ratios, factors : sequences
+        Willis' quotient ``i_k`` and factor ``f_k`` of each element (sympy or numbers).
+    speeds : mapping body -> expression
+        The given speeds (the frame's 0 included).
+    torques : mapping body -> expression
+        The given external torques.
+    reacting : sequence of bodies
+        Bodies whose external torque is unknown (their balance gives it).
+
+    Examples
+    --------
+    A fixed-axis pair 20/40 (``i = -2``) whose gear 1 drives (``f = eta``), input torque 1:
+    the output's reaction is ``2·eta``.
+
+    >>> eta = sp.Symbol("eta")
+    >>> s = train_systems(["0", "1", "2"], [("1", "2", "0")], [-2], [eta],
+    ...                   {"0": 0, "1": 1}, {"1": 1}, ["2", "0"])
+    >>> det, (w2,) = solve_linear(s.speed_matrix, s.speed_rhs)
+    >>> w2
+    -1/2
+    >>> det, (force,) = solve_linear(s.force_matrix, s.force_rhs)
+    >>> s.reactions["2"].subs(s.forces[0], force)
+    2*eta
+    """
+    free = tuple(b for b in bodies if b not in speeds)
+    balanced = tuple(b for b in bodies if b not in set(reacting))
+    column, row = {b: j for j, b in enumerate(free)}, {b: r for r, b in enumerate(balanced)}
+    speed_matrix, speed_rhs = sp.zeros(len(elements), len(free)), sp.zeros(len(elements), 1)
+    force_matrix, force_rhs = sp.zeros(len(balanced), len(elements)), sp.zeros(len(balanced), 1)
+    forces = sp.symbols(f"lambda0:{len(elements)}")
+    on_body: dict[Hashable, sp.Expr] = {b: sp.Integer(0) for b in bodies}
+    for k, (places, ratio, factor) in enumerate(zip(elements, ratios, factors)):
+        for body, coef in zip(places, stencil(ratio)):
+            if body in column:
+                speed_matrix[k, column[body]] += coef
+            else:
+                speed_rhs[k] -= coef * speeds[body]
+        for body, coef in zip(places, stencil(ratio, factor)):
+            on_body[body] += coef * forces[k]
+            if body in row:
+                force_matrix[row[body], k] += coef
+    for body, torque in torques.items():
+        if body in row:
+            force_rhs[row[body]] -= torque
+    reactions = {b: -(on_body[b] + torques.get(b, 0)) for b in bodies if b not in row}
+    return TrainSystems(speed_matrix, speed_rhs, free, force_matrix, force_rhs, balanced,
+                        tuple(forces), reactions)
+
+
+def stencil(ratio: Any, factor: Any = 1) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
+    """:func:`~powergraph.kinematics.elements.element_stencil` on sympy values, exact: the
+    stencil's constants are floats (``1.0``), taken here as the integers they are.
+
+    Examples
+    --------
+    >>> stencil(sp.Symbol("i"), sp.Symbol("f"))
+    (1, -f*i, f*i - 1)
+    """
+    coefs = [sp.sympify(c) for c in element_stencil(sp.sympify(ratio), sp.sympify(factor))]
+    return tuple(c.xreplace({f: sp.Integer(int(f)) for f in c.atoms(sp.Float) if float(f).is_integer()})
+                 for c in coefs)
+
+
+def solve_linear(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple[sp.Expr, list[sp.Expr]]:
+    """``matrix⁻¹ · rhs`` as adjugate over determinant, each entry cancelled.
+
+    Returns the expanded determinant and the solution; the caller decides what a
+    vanishing determinant means. ``matrix`` must be square.
+
+    Examples
+    --------
+    >>> a = sp.Symbol("a")
+    >>> solve_linear(sp.Matrix([[a, 1], [0, 2]]), sp.Matrix([1, 4]))
+    (2*a, [-1/a, 2])
+    """
+    det = sp.expand(matrix.det(method="bareiss"))
+    if det == 0:
+        return det, []
+    adjugate = matrix.adjugate(method="bareiss")
+    return det, [sp.cancel((adjugate[r, :] * rhs)[0, 0] / det) for r in range(matrix.rows)]

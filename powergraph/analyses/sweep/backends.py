@@ -1,0 +1,369 @@
+"""The train's two linear systems over arrays of variants, and its closed forms.
+
+A backend solves, for arrays of variants, the **speeds** (Willis rows over the bodies
+whose speed is not given) and the **forces** (the torque balances of the bodies with no
+unknown external torque, for the elements' factors ``f``), returning with the forces the
+external torques of the other bodies (the reactions). Every coefficient comes from
+:func:`~powergraph.kinematics.elements.element_stencil`. Ratio arguments are magnitudes:
+``i_k = s_k q_k`` with the sign ``s_k`` of a teeth-swept mesh folded in (``q_k = z_b/z_a``).
+
+- :class:`SymbolicBackend` builds both systems once with sympy
+  (:func:`powergraph.analyses.formula.systems.train_systems`, the derivation
+  ``powergraph formula`` uses), solves them as adjugate over determinant and compiles them
+  with ``lambdify`` (common-subexpression elimination): the closed form a designer would
+  derive, for any train. :meth:`SymbolicBackend.closed_form` composes the whole solve of
+  one direction pattern into one compiled function (:class:`ClosedForm`).
+- :class:`NumericBackend` builds ``(n, rows, cols)`` matrices and solves them with batched
+  ``numpy.linalg.solve`` — or, where a system is not square or is singular, with the
+  pseudo-inverse (the minimum-norm solution the single solver takes) and a residual check.
+  Slower, but it takes any train.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Callable, Sequence
+
+import numpy as np
+
+from powergraph.analyses.sweep.result import OK
+from powergraph.kinematics.elements import element_stencil
+
+if TYPE_CHECKING:  # pragma: no cover
+    from powergraph.analyses.sweep.compile import Layout
+    from powergraph.analyses.sweep.evaluate import Chunk, Outputs
+
+#: Largest system solved symbolically; bigger ones use the numeric backend.
+MAX_SYMBOLIC = 8
+#: A determinant below this fraction of its terms' absolute sum counts as singular
+#: (the single solver's rank tolerance is 1e-10 on singular values).
+SINGULAR = 1e-12
+#: Singular-value ratio below which a system is rank-deficient (as the single solver).
+RANK_TOLERANCE = 1e-10
+#: Power below this fraction of the given port power passes "nothing" (as the single solver).
+DIRECTION_TOLERANCE = 1e-11
+
+
+def applies(layout: "Layout") -> bool:
+    """True when both reduced systems are square, small and statically determinate."""
+    return (layout.determinate and len(layout.free_bodies) == layout.n_elements
+            == len(layout.balance_bodies) and len(set(layout.unknown)) == len(layout.unknown)
+            and 0 < layout.n_elements <= MAX_SYMBOLIC)
+
+
+def driver_codes(products, tolerance, out: np.ndarray | None = None) -> np.ndarray:
+    """+1 where gear a feeds power ``-λ (w_a - w_c)`` in (``product = λ (w_a - w_c)``
+    below ``-tolerance``), -1 where it takes it out, 0 where (almost) nothing passes."""
+    return np.subtract(np.asarray(products < -tolerance).view(np.int8),
+                       np.asarray(products > tolerance).view(np.int8), out=out)
+
+
+class SymbolicBackend:
+    """Speeds, element forces and reactions of a train as compiled closed forms."""
+
+    name = "symbolic"
+
+    def __init__(self, layout: "Layout") -> None:
+        import sympy as sp
+
+        from powergraph.analyses.formula.systems import train_systems
+
+        self.layout = lay = layout
+        n = lay.n_elements
+        self.q, self.f = sp.symbols(f"q0:{n}"), sp.symbols(f"f0:{n}")
+        self.w = sp.symbols(f"w0:{len(lay.speed_ports)}")
+        self.t = sp.symbols(f"t0:{len(lay.loads)}")
+        ratios = [sp.Integer(1) if lay.kinds[k] == "coupling"
+                  else sp.Integer(int(lay.signs[k])) * self.q[k] for k in range(n)]
+        known = {lay.frame: sp.Integer(0)}
+        known.update({body: self.w[j] for j, (body, _) in enumerate(lay.speed_ports)})
+        systems = train_systems(range(lay.n_bodies), lay.places, ratios, self.f, known,
+                                {load.body: t for load, t in zip(lay.loads, self.t)},
+                                lay.unknown)
+        det, scale, values = _solve(sp, systems.speed_matrix, systems.speed_rhs)
+        by_free = dict(zip(systems.free, values))
+        self.kinematics = (det, scale, [known[j] if j in known else by_free[j]
+                                        for j in range(lay.n_bodies)])
+        det, scale, forces = _solve(sp, systems.force_matrix, systems.force_rhs)
+        solved = dict(zip(systems.forces, forces))
+        reactions = [systems.reactions[body].xreplace(solved) for body in lay.unknown]
+        self.balance = (det, scale, forces + reactions)
+        self._speeds = _lambdify(sp, [self.q, self.w], [*self.kinematics[:2],
+                                                        *self.kinematics[2]])
+        self._forces = _lambdify(sp, [self.q, self.f, self.t], [det, scale, *forces,
+                                                                *reactions])
+
+    def speeds(self, ratios: Sequence, given: Sequence) -> tuple[list, np.ndarray]:
+        """Absolute speed of every body (rad/s), and where the Willis rows are regular."""
+        det, scale, *values = self._speeds(list(ratios), list(given))
+        return values, det > scale
+
+    def forces(self, ratios: Sequence, factors: Sequence,
+               torques: Sequence) -> tuple[list, np.ndarray]:
+        """Force ``λ_k`` (torque on gear a) of every element, then the reaction of every
+        body of ``layout.unknown``; and where the balance is regular (loads determined)."""
+        det, scale, *values = self._forces(list(ratios), list(factors), list(torques))
+        return values, det > scale
+
+    def closed_form(self, moving: Sequence[int], codes: Sequence[int],
+                    start: Sequence[int] | None = None) -> "ClosedForm":
+        """The compiled closed form of this train for one direction pattern."""
+        return ClosedForm(self, tuple(moving), tuple(codes),
+                          None if start is None else tuple(start))
+
+
+def _solve(sp, matrix, rhs) -> tuple:
+    """``|det|``, its singularity threshold (:data:`SINGULAR` times the sum of the
+    determinant's terms in absolute value) and the solution."""
+    from powergraph.analyses.formula.systems import solve_linear
+
+    det, solution = solve_linear(matrix, rhs)
+    terms = sp.Add(*(sp.Abs(term) for term in sp.Add.make_args(det)))
+    return sp.Abs(det), sp.Mul(sp.Float(SINGULAR), terms, evaluate=False), solution
+
+
+def _lambdify(sp, args, expressions) -> Callable:
+    """numpy function of ``args`` (call it under ``np.errstate(all="ignore")``)."""
+    return sp.lambdify(args, list(expressions), modules="numpy", cse=True)
+
+
+class ClosedForm:
+    """The whole solve of one direction pattern as one compiled function, with the check
+    that the pattern holds.
+
+    A designer who derives a train's efficiency by hand fixes who drives each mesh in its
+    carrier's frame first, then checks that this holds. Here, for the driver ``codes`` of
+    the ``moving`` elements (efficiency not identically 1), ``f = η`` or ``1/η`` goes into
+    the symbolic solution and speeds, loads, forces, port powers and losses are composed
+    into one expression graph. Per variant :meth:`evaluate` checks what the single solver
+    would find: the speed and force systems regular, and the pattern read from the ideal
+    forces (``f = 1``), then (two passes, ``start`` differing from ``codes``, as a
+    back-driven train typically needs) from ``start``'s forces, and from the pattern's own
+    forces. Variants that fail the check are left to the general iteration.
+    """
+
+    def __init__(self, backend: SymbolicBackend, moving: tuple[int, ...],
+                 codes: tuple[int, ...], start: tuple[int, ...] | None = None) -> None:
+        import sympy as sp
+
+        self.layout = lay = backend.layout
+        self.moving, self.codes = moving, codes
+        self.start = codes if start is None else start
+        self.passes = 1 if self.start == codes else 2
+        self.hits = 0              # variants taken so far (the caller orders by it)
+        n = lay.n_elements
+        etas, loads = sp.symbols(f"e0:{n}"), sp.symbols(f"p0:{len(lay.loads)}")
+        det_k, scale_k, speeds = backend.kinematics
+        torques = [_torque(load, value, speeds) for load, value in zip(lay.loads, loads)]
+        rel = [speeds[a] - speeds[c] for a, c in zip(lay.body_a, lay.body_c)]
+        patterns = [(0,) * len(moving)] + ([self.start] if self.passes == 2 else []) + [codes]
+        factors = [_factors(sp, n, moving, pattern, etas) for pattern in patterns]
+        checks = [_balance(backend, f, torques) for f in factors]
+        final, factors = checks[-1][2], factors[-1]
+        products = [final[k] * rel[k] for k in range(n)]
+        reaction = dict(zip(lay.unknown, final[n:]))
+        given = {load.body: t for load, t in zip(lay.loads, torques)}
+        external = {b: given[b] if b in given else reaction[b]
+                    for b in set(lay.inputs + lay.outputs)}
+        ratio = (speeds[lay.ratio_bodies[0]] / speeds[lay.ratio_bodies[1]]
+                 if lay.ratio_bodies else sp.nan)
+        outputs = [det_k, scale_k, *[x for c in checks for x in c[:2]],
+                   *[c[2][k] * rel[k] for c in checks[:-1] for k in moving], *products,
+                   sum(external[b] * speeds[b] for b in lay.inputs),
+                   -sum(external[b] * speeds[b] for b in lay.outputs), ratio,
+                   *[products[k] * (factors[k] - 1) for k in moving],
+                   *[sp.Abs(t * speeds[load.body]) for load, t in zip(lay.loads, torques)]]
+        self._function = _lambdify(sp, [backend.q, etas, backend.w, loads], outputs)
+
+    def evaluate(self, chunk: "Chunk", out: "Outputs") -> np.ndarray | bool:
+        """Write the variants the pattern holds for into ``out``; return where it holds."""
+        n, n_el = chunk.n, self.layout.n_elements
+        values = iter(self._function(chunk.magnitudes, chunk.efficiencies, chunk.speeds,
+                                     chunk.loads))
+        valid = next(values) > next(values)                 # speeds regular
+        for _ in range(self.passes + 1):                    # every force system regular
+            valid = valid & (next(values) > next(values))
+        earlier = [[next(values) for _ in self.moving] for _ in range(self.passes)]
+        products = [next(values) for _ in range(n_el)]
+        input_power, output_power, ratio = next(values), next(values), next(values)
+        losses = [next(values) for _ in self.moving]
+        power = 0.0
+        for term in values:
+            power = np.maximum(power, term)
+        tolerance = DIRECTION_TOLERANCE * np.maximum(power, 1e-300)
+        valid = valid & np.isfinite(tolerance)
+        expected = [self.start] + [self.codes] * (self.passes - 1)
+        for read, codes in zip(earlier + [[products[k] for k in self.moving]],
+                               expected + [self.codes]):
+            for product, code in zip(read, codes):
+                valid = valid & _holds(product, code, tolerance)
+        valid = np.broadcast_to(valid, n)
+        if not valid.any():
+            return False
+        target = out if valid.all() else type(out).empty(n, n_el)
+        self._write(target, input_power, output_power, ratio, products, losses, tolerance)
+        if target is out:
+            return True
+        out.put(valid, target, valid)
+        return valid
+
+    def _write(self, out: "Outputs", input_power, output_power, ratio, products: list,
+               losses: list, tolerance) -> None:
+        """Every result of the chunk into ``out``, in place."""
+        out.input_power[:] = input_power
+        out.output_power[:] = output_power
+        out.ratio[:] = ratio
+        np.divide(out.output_power, out.input_power, out=out.efficiency)
+        if not np.all(input_power):
+            out.efficiency[out.input_power == 0] = np.nan
+        _sum(losses, out.total_loss)
+        moving = dict(zip(self.moving, range(len(self.moving))))
+        for k, product in enumerate(products):
+            j = moving.get(k)
+            if j is None:
+                out.losses[k] = 0.0
+                driver_codes(product, tolerance, out=out.codes[k])
+            else:
+                out.losses[k] = losses[j]
+                out.codes[k] = self.codes[j]
+        out.status[:] = OK
+        out.passes[:] = self.passes
+        np.less_equal(out.efficiency, 0.0, out=out.self_locking)
+
+
+def _sum(terms: list, out: np.ndarray) -> None:
+    """``out[:] = sum(terms)`` in place."""
+    if len(terms) < 2:
+        out[:] = terms[0] if terms else 0.0
+        return
+    np.add(terms[0], terms[1], out=out)
+    for term in terms[2:]:
+        out += term
+
+
+def _factors(sp, n: int, moving, codes, etas) -> list:
+    """``f = η`` (gear a drives), ``1/η`` (gear b), 1 (nothing, or an ideal element)."""
+    factors = [sp.Integer(1)] * n
+    for k, code in zip(moving, codes):
+        factors[k] = etas[k] if code > 0 else (1 / etas[k] if code < 0 else sp.Integer(1))
+    return factors
+
+
+def _torque(load, value, speeds):
+    """External torque of a loaded port, as the single solver: ``P/w`` in, ``-P/w`` out."""
+    if load.kind == "torque":
+        return value
+    w = speeds[load.body]
+    return value / w if load.role == "input" else -value / w
+
+
+def _balance(backend: SymbolicBackend, factors: list, torques: list) -> tuple:
+    """Determinant, its scale, and the forces and reactions for these factors and torques."""
+    det, scale, forces = backend.balance
+    mapping = dict(zip(backend.f, factors))
+    mapping.update(zip(backend.t, torques))
+    return (det.xreplace(mapping), scale.xreplace(mapping),
+            [f.xreplace(mapping) for f in forces])
+
+
+def _holds(product, code: int, tolerance):
+    """The driver code read from ``λ (w_a - w_c)`` is ``code``."""
+    if code > 0:
+        return product < -tolerance
+    if code < 0:
+        return product > tolerance
+    return np.abs(product) <= tolerance
+
+
+class NumericBackend:
+    """Speeds, element forces and reactions by batched linear solves."""
+
+    name = "numeric"
+
+    def __init__(self, layout: "Layout") -> None:
+        self.layout = layout
+        self._free = {body: j for j, body in enumerate(layout.free_bodies)}
+
+    def speeds(self, ratios: Sequence, given: Sequence) -> tuple[list, np.ndarray]:
+        """Absolute speed of every body, and where the Willis rows fix them (regular)."""
+        lay = self.layout
+        n = _length(list(ratios) + list(given))
+        known = {lay.frame: np.zeros(n)}
+        for (body, _), value in zip(lay.speed_ports, given):
+            known[body] = np.broadcast_to(np.asarray(value, float), n)
+        matrix = np.zeros((n, lay.n_elements, len(self._free)))
+        rhs = np.zeros((n, lay.n_elements))
+        for k in range(lay.n_elements):
+            stencil = element_stencil(lay.signs[k] * np.asarray(ratios[k], float))
+            for body, coef in zip(lay.places[k], stencil):
+                if body in self._free:
+                    matrix[:, k, self._free[body]] += coef
+                else:
+                    rhs[:, k] -= coef * known[body]
+        solution, bad = _batched_solve(matrix, rhs, full_rank_needed=True)
+        speeds = [known[j] if j in known else solution[:, self._free[j]]
+                  for j in range(lay.n_bodies)]
+        return _squeezed(speeds, bad, list(ratios) + list(given))
+
+    def forces(self, ratios: Sequence, factors: Sequence,
+               torques: Sequence) -> tuple[list, np.ndarray]:
+        """Element forces ``λ``, then the reactions of ``layout.unknown``; and where the
+        loads are fixed."""
+        lay = self.layout
+        n = _length(list(ratios) + list(factors) + list(torques))
+        n_el = lay.n_elements
+        matrix = np.zeros((n, lay.n_bodies, n_el + len(lay.unknown)))
+        for k in range(n_el):
+            stencil = element_stencil(lay.signs[k] * np.asarray(ratios[k], float),
+                                      np.asarray(factors[k], float))
+            for body, coef in zip(lay.places[k], stencil):
+                matrix[:, body, k] += coef
+        for j, body in enumerate(lay.unknown):
+            matrix[:, body, n_el + j] = 1.0
+        rhs = np.zeros((n, lay.n_bodies))
+        for load, torque in zip(lay.loads, torques):
+            rhs[:, load.body] -= torque
+        solution, bad = _batched_solve(matrix, rhs, full_rank_needed=lay.determinate)
+        forces = solution[:, :n_el]
+        on_body = np.einsum("nbk,nk->nb", matrix[:, :, :n_el], forces)
+        reactions = [rhs[:, body] - on_body[:, body] for body in lay.unknown]
+        return _squeezed(list(forces.T) + reactions, bad,
+                         list(ratios) + list(factors) + list(torques))
+
+
+def _squeezed(values: list, bad: np.ndarray, inputs: list) -> tuple[list, np.ndarray]:
+    """Scalars out when every input was a scalar (results broadcast like the symbolic
+    backend's); the mask returned is ``regular`` (not bad)."""
+    if any(np.ndim(v) for v in inputs):
+        return values, ~bad
+    return [float(v[0]) for v in values], not bad[0]
+
+
+def _length(values: list) -> int:
+    sizes = {np.size(v) for v in values if np.ndim(v)}
+    return max(sizes) if sizes else 1
+
+
+def _batched_solve(matrix: np.ndarray, rhs: np.ndarray,
+                   full_rank_needed: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Batched solve; ``bad`` where inconsistent, or rank-deficient when a full rank is
+    needed (speeds; loads of a statically determinate train)."""
+    with np.errstate(all="ignore"):
+        finite = np.all(np.isfinite(matrix), axis=(1, 2)) & np.all(np.isfinite(rhs), axis=1)
+        clean = np.where(finite[:, None, None], matrix, 0.0)
+        singular_values = np.linalg.svd(clean, compute_uv=False)
+        top = np.maximum(singular_values[:, :1], 1.0)
+        rank = np.sum(singular_values > RANK_TOLERANCE * top, axis=1)
+        square = matrix.shape[1] == matrix.shape[2]
+        full_rank = rank == matrix.shape[2]
+        solution = np.full((matrix.shape[0], matrix.shape[2]), np.nan)
+        exact = finite & full_rank if square else np.zeros_like(finite)
+        if exact.any():
+            solution[exact] = np.linalg.solve(clean[exact], rhs[exact][..., None])[..., 0]
+        rest = finite & ~exact
+        if rest.any():
+            pinv = np.linalg.pinv(clean[rest], rcond=RANK_TOLERANCE)
+            solution[rest] = (pinv @ rhs[rest][..., None])[..., 0]
+        residual = np.einsum("nij,nj->ni", clean, np.nan_to_num(solution)) - rhs
+        scale = np.maximum(1.0, np.max(np.abs(rhs), axis=1))
+        inconsistent = np.max(np.abs(residual), axis=1) > 1e-8 * scale
+        bad = ~finite | inconsistent | (full_rank_needed & ~full_rank)
+    return solution, bad
