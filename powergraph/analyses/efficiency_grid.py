@@ -46,6 +46,10 @@ from powergraph.statics.equilibrium import loads_of
 from powergraph.statics.friction import MAX_PASSES, friction_meshes
 
 RPM = 2.0 * math.pi / 60.0
+#: The single solve's convergence test (the default of ``solve_with_friction``): no
+#: efficiency changes by more than this, no bearing torque by more than this times the
+#: largest torque of the train.
+TOLERANCE = 1e-12
 #: A balance whose condition number reaches this is solved one point at a time (as the
 #: single solve then falls back to a least-squares solution).
 MAX_CONDITION = 1e12
@@ -62,8 +66,7 @@ class GridSolution:
     single_solves: int
 
 
-def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
-               tolerance: float = 1e-12, max_passes: int = MAX_PASSES) -> GridSolution:
+def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> GridSolution:
     """Solve ``model`` at input speeds ``speeds_rpm[p]`` (rpm) with output loads
     ``torques[p]`` (N·m, resisting the output's motion), all points at once.
 
@@ -73,8 +76,6 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
         A 1-DOF train with one input and one output port (their loads are replaced).
     speeds_rpm, torques : ndarray
         One value per point (same shape, 1-D).
-    tolerance, max_passes
-        As :func:`powergraph.statics.friction.solve_with_friction`.
 
     Returns
     -------
@@ -87,8 +88,7 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
     for sign in (1.0, -1.0):
         group = np.flatnonzero(np.sign(speeds_rpm) == sign)
         if group.size:
-            done = _batch(model, speeds_rpm[group], torques[group], sense, tolerance,
-                          max_passes)
+            done = _batch(model, speeds_rpm[group], torques[group], sense)
             if done is not None:
                 ok, eta, p_in = done
                 efficiency[group[ok]], power[group[ok]] = eta[ok], p_in[ok]
@@ -113,8 +113,8 @@ def at_point(model: Model, speed: float, torque: float, sense: float) -> Model:
                            torque=-float(torque) * float(np.sign(speed) * sense))
 
 
-def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray, sense: float,
-           tolerance: float, max_passes: int) -> tuple[np.ndarray, ...] | None:
+def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
+           sense: float) -> tuple[np.ndarray, ...] | None:
     """``(settled, efficiency, input power)`` of points whose input speeds share a sign,
     or None when the train's balance is not a square system with one consistent pattern
     at a reference point (the first, middle or last that converges; then every point is
@@ -131,7 +131,7 @@ def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray, sense: flo
     grid = _Grid.build(model, speeds_rpm, torques, sense, reference)
     if grid is None:
         return None
-    return grid.iterate(tolerance, max_passes)
+    return grid.iterate(TOLERANCE, MAX_PASSES)
 
 
 @lru_cache(maxsize=256)
@@ -144,7 +144,7 @@ def _working_radius(geometry: Any) -> float:
     return path_of_contact(geometry).working_radius_1 / 1000.0
 
 
-@dataclass
+@dataclass(frozen=True)
 class _Grid:
     """The arrays of one batch: ``P`` points, bodies ``B`` (rows), elements then unknown
     external torques (columns)."""
@@ -199,6 +199,11 @@ class _Grid:
         return matrix, rhs, np.linalg.solve(matrix, rhs[..., None])[..., 0]
 
     def iterate(self, tolerance: float, max_passes: int) -> tuple[np.ndarray, ...] | None:
+        """The passes of ``solve_with_friction`` on every point: start ideal without
+        bearing torques; solve; update the efficiencies and bearing torques; a point
+        settles at the first pass whose updates are within ``tolerance`` and keeps that
+        pass's values. Returns ``(accepted, efficiency, input power)``, or None when a
+        balance is singular (then every point is solved alone)."""
         n_points, n_el = self.rel.shape
         eta = np.tile([el.efficiency for el in self.elements], (n_points, 1))
         for k, f in self.frictions.items():

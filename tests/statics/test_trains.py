@@ -252,8 +252,8 @@ def test_rv40e_friction_model_with_its_support_bearings_by_hand() -> None:
     - crank supports [3, 7], two instances (one per crank), Δω = −Nω − ω = −(N + 1) ω:
       M_c = 2 (μ F d/2 + 0.02 N·m) with μ = 0.0018, d = 20 mm and F the tangential tooth
       force on one planet, |T2|/(2 r_2) = a η1 T1'/(2 a r_1) = η1 T1'/(2 r_1) (r_1 = 9 mm,
-      the working = reference pitch radius of the V-zero pair, m z1/2). Since Δω < 0 the torque is +M_c on the crank and
-      −M_c on the output body.
+      the working = reference pitch radius of the V-zero pair, m z1/2). Since Δω < 0 the
+      torque is +M_c on the crank and −M_c on the output body.
 
     The crank body's balance T2 − (T4 + T5) + M_c = 0 with T4 + T5 = −T4/(N η_K) gives
     T4 = (a η1 T1' − M_c) N η_K, and the output body takes

@@ -385,10 +385,11 @@ def refuse_loss_blocks(model: Model, what: str) -> None:
     efficiencies passes a model without them.
 
     >>> from powergraph.model import load_model
-    >>> refuse_loss_blocks(load_model("models/rv40e_friction.yaml"), "the compiled sweep")
+    >>> m = load_model("models/rv40e_friction.yaml")
+    >>> refuse_loss_blocks(m, "the compiled sweep")   # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    powergraph.errors.ModelError: links[0].friction: the compiled sweep takes constant efficiencies; replace this block by an efficiency, or use powergraph solve / map
+    powergraph.errors.ModelError: links[0].friction: the compiled sweep takes constant ...
     """
     places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"
               for link in model.links for key, block in link.blocks.items()
