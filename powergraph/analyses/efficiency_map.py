@@ -8,8 +8,9 @@ long as no element changes its driver and no tooth force loading a bearing chang
 two solves per speed, at the smallest and the largest torque, give the whole row, and the
 row is solved point by point when the two ends disagree (an affine quantity with the same
 sign at both ends keeps it in between). Drag makes such maps rise with torque. With
-load-dependent mesh friction (ISO/TR 14179-2) each point is solved with its own
-load-dependent passes.
+load-dependent mesh friction (ISO/TR 14179-2) each point is its own fixed point; the passes
+run on the whole grid at once, with arrays (:mod:`powergraph.analyses.efficiency_grid`),
+and points the batch cannot take are solved one by one.
 
 Examples
 --------
@@ -26,6 +27,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from powergraph.analyses.efficiency_grid import at_point, solve_grid
 from powergraph.errors import UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Model
@@ -40,7 +42,10 @@ RPM = 2.0 * math.pi / 60.0
 class EfficiencyMap:
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
     ``torques[j]`` (N·m, the load the output drives). ``load_dependent`` is True when it
-    varies over the map (load-dependent mesh friction, bearing friction or drag)."""
+    varies over the map (load-dependent mesh friction, bearing friction or drag).
+    ``unconverged`` lists the ``(speed rpm, torque)`` points whose load-dependent passes
+    did not converge (their efficiency is NaN); ``single_solves`` counts the points solved
+    one at a time."""
 
     name: str
     torques: np.ndarray
@@ -49,13 +54,17 @@ class EfficiencyMap:
     rated_torque: float | None = None
     load_dependent: bool = False
     input_power: np.ndarray = field(default=None, repr=False)
+    unconverged: tuple[tuple[float, float], ...] = ()
+    single_solves: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,
-        load_dependent}``."""
+        load_dependent, unconverged}`` (NaN efficiencies as null)."""
+        values = [[None if math.isnan(e) else e for e in row] for row in self.efficiency.tolist()]
         return {"name": self.name, "torques": self.torques.tolist(),
-                "speeds_rpm": self.speeds_rpm.tolist(), "efficiency": self.efficiency.tolist(),
-                "rated_torque": self.rated_torque, "load_dependent": self.load_dependent}
+                "speeds_rpm": self.speeds_rpm.tolist(), "efficiency": values,
+                "rated_torque": self.rated_torque, "load_dependent": self.load_dependent,
+                "unconverged": [list(p) for p in self.unconverged]}
 
     def text_report(self) -> str:
         head = "speed rpm \\ torque N·m"
@@ -64,6 +73,9 @@ class EfficiencyMap:
                  f"{head:>22}" + "".join(f"{t:>10.4g}" for t in self.torques)]
         for speed, row in zip(self.speeds_rpm, self.efficiency):
             lines.append(f"{speed:>22.5g}" + "".join(f"{100 * e:>10.3f}" for e in row))
+        if self.unconverged:
+            lines.append(f"{len(self.unconverged)} point(s) did not converge (nan): " +
+                         ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in self.unconverged))
         return "\n".join(lines)
 
     def plot(self, ax: Any = None, **kwargs: Any):
@@ -100,14 +112,16 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
         raise UsageError("input speeds must be non-zero")
     dependent = any(f.load_dependent for f in friction_meshes(model).values())
     sense = np.sign(solve_speeds(model).ratio or 1.0)
+    if dependent:
+        return _dependent_map(model, torques, speeds, rated_torque)
     values = np.empty((speeds.size, torques.size))
     power = np.empty_like(values)
     for i, speed in enumerate(speeds):
-        if not dependent and model.has_bearing_losses:
+        if model.has_bearing_losses:
             values[i], power[i] = _affine_row(model, speed * RPM, torques, sense)
             continue
         for j, torque in enumerate(torques):
-            if not dependent and (i or j):
+            if i or j:
                 values[i, j] = values[0, 0]
                 power[i, j] = power[0, 0] * (speed / speeds[0]) * (torque / torques[0])
                 continue
@@ -115,8 +129,22 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
             values[i, j], power[i, j] = result.efficiency, result.input_power
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
-                         load_dependent=dependent or model.has_bearing_losses,
-                         input_power=power)
+                         load_dependent=model.has_bearing_losses, input_power=power)
+
+
+def _dependent_map(model: Model, torques: np.ndarray, speeds: np.ndarray,
+                   rated_torque: float | None) -> EfficiencyMap:
+    """The map of a load-dependent mesh law, every point a fixed point, all at once."""
+    speed_grid, torque_grid = np.meshgrid(speeds, torques, indexing="ij")
+    grid = solve_grid(model, speed_grid.ravel(), torque_grid.ravel())
+    shape = speed_grid.shape
+    failed = grid.unconverged.reshape(shape)
+    return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
+                         efficiency=grid.efficiency.reshape(shape), rated_torque=rated_torque,
+                         load_dependent=True, input_power=grid.input_power.reshape(shape),
+                         unconverged=tuple((float(speeds[i]), float(torques[j]))
+                                           for i, j in zip(*np.nonzero(failed))),
+                         single_solves=grid.single_solves)
 
 
 def _affine_row(model: Model, speed: float, torques: np.ndarray,
@@ -139,12 +167,7 @@ def _affine_row(model: Model, speed: float, torques: np.ndarray,
 
 def _at(model: Model, speed: float, torque: float, sense: float) -> Model:
     """``model`` at input speed ``speed`` (rad/s) with output load ``torque`` (N·m)."""
-    port_in = model.inputs[0].index
-    port_out = model.outputs[0].index
-    model = model.with_port(port_in, speed=speed, power=None, torque=None)
-    # The load opposes the output's motion, whose sense is the input's over the ratio.
-    return model.with_port(port_out, speed=None, power=None,
-                           torque=-float(torque) * float(np.sign(speed) * sense))
+    return at_point(model, speed, torque, sense)
 
 
 def _grid(values: Sequence[float], what: str) -> np.ndarray:

@@ -30,6 +30,8 @@ import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
+import numpy as np
+
 from powergraph.gears.involute import involute, inverse_involute
 from powergraph.errors import ModelError
 
@@ -314,8 +316,9 @@ def iso14179_mu(tangential_force: float, face_width: float, pitch_speed: float,
 
     Parameters
     ----------
-    tangential_force : float
-        Tangential force at the working pitch circle, N (its magnitude is used).
+    tangential_force : float or array
+        Tangential force at the working pitch circle, N (its magnitude is used); with
+        arrays of forces and/or speeds, an array of coefficients is returned.
     face_width : float
         Face width b, mm.
     pitch_speed : float
@@ -333,6 +336,9 @@ def iso14179_mu(tangential_force: float, face_width: float, pitch_speed: float,
     >>> g = MeshGeometry(20, 40, module=2.0)
     >>> round(iso14179_mu(1000.0, 20.0, 5.0, g, viscosity=30.0, roughness=0.5), 4)
     0.0435
+    >>> iso14179_mu(np.array([0.0, 1000.0]), 20.0, 5.0, g, viscosity=30.0,
+    ...             roughness=0.5).round(4).tolist()
+    [0.0, 0.0435]
     """
     for name, value in (("face_width", face_width), ("viscosity", viscosity),
                         ("roughness", roughness), ("lubricant_factor", lubricant_factor)):
@@ -343,9 +349,19 @@ def iso14179_mu(tangential_force: float, face_width: float, pitch_speed: float,
     rho_1 = path.working_radius_1 * math.sin(alpha_w)
     rho_2 = path.working_radius_2 * math.sin(alpha_w) * (-1.0 if geometry.internal else 1.0)
     rho_red = rho_1 * rho_2 / (rho_1 + rho_2) / math.cos(path.base_helix_angle)
+    if np.ndim(tangential_force) or np.ndim(pitch_speed):     # arrays: one μ per point
+        load = np.abs(tangential_force) / math.cos(alpha_w) / face_width
+        v_sum = np.maximum(2.0 * np.abs(pitch_speed) * math.sin(alpha_w), MIN_SUM_VELOCITY)
+        return np.where(load == 0.0, 0.0, _schlenk(load, v_sum, rho_red, viscosity, roughness,
+                                                   lubricant_factor))
     load = abs(tangential_force) / math.cos(alpha_w) / face_width
     v_sum = max(2.0 * abs(pitch_speed) * math.sin(alpha_w), MIN_SUM_VELOCITY)
     if load == 0.0:
         return 0.0
+    return _schlenk(load, v_sum, rho_red, viscosity, roughness, lubricant_factor)
+
+
+def _schlenk(load, v_sum, rho_red, viscosity, roughness, lubricant_factor):
+    """ISO/TR 14179-2's fit for the mean coefficient (floats or arrays)."""
     return 0.048 * (load / (v_sum * rho_red)) ** 0.2 * viscosity ** -0.05 \
         * roughness ** 0.25 * lubricant_factor

@@ -224,13 +224,20 @@ def test_divergent_bearing_law_is_a_solve_error() -> None:
 @pytest.mark.parametrize("path", sorted(MODELS.glob("*.yaml")), ids=lambda p: p.stem)
 def test_models_without_blocks_are_unchanged_and_zero_blocks_change_nothing(path) -> None:
     # A bearing whose friction and drag are zero applies no torque: the solve must be the
-    # same, bit for bit, as the model without it (and without any bearing state).
-    model = pg.load_model(path)
-    plain = solve(model)
-    assert plain.bearings == () and plain.total_loss == sum(e.loss for e in plain.elements)
+    # same, bit for bit, as the model without it (and without any bearing state). A library
+    # model with bearing or drag blocks (models/rv40e_friction.yaml) is taken without them.
     import yaml
 
     data = yaml.safe_load(path.read_text())
+    for link in data["links"]:
+        if link["type"] == "bearing":
+            link.pop("friction", None)
+            link.pop("drag", None)
+    for component in data["components"].values():
+        component.pop("drag", None)
+    model = model_from_dict(data)
+    plain = solve(model)
+    assert plain.bearings == () and plain.total_loss == sum(e.loss for e in plain.elements)
     moving = next(str(c) for c in data["components"] if str(c) != model.frame)
     zero = copy.deepcopy(data)
     zero["links"].append({"type": "bearing", "between": [moving, model.frame],

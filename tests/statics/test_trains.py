@@ -190,8 +190,24 @@ ports: [{component: 1, role: input}, {component: 2, role: output}]
     assert math.isclose(result.ratio, -2.0, rel_tol=1e-12)
 
 
+def _rv40e_friction_data() -> dict:
+    from powergraph.model.yaml_loader import load_yaml_file
+
+    return load_yaml_file(MODELS / "rv40e_friction.yaml")
+
+
+def _eta_c() -> float:
+    """The cycloid mesh's basic efficiency from the file's pins and crank bearing blocks."""
+    from powergraph.gears.cycloid_loss import (CrankBearing, PinContact, PinRing,
+                                               cycloid_mesh_loss)
+
+    return cycloid_mesh_loss(PinRing(39, 64.0, 3.0, 1.3), PinContact(0.05, rolling=True),
+                             bearing=CrankBearing(0.0025, 13.0, 36.0)).efficiency
+
+
 def test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage() -> None:
-    """models/rv40e_friction.yaml against a hand derivation (docs/losses.md).
+    """models/rv40e_friction.yaml without its support bearings' friction and drag blocks,
+    against a hand derivation (docs/losses.md).
 
     Speeds: the output body 6/7 turns at ω, the crank 2/3 at −N ω (N = z4 = 39, the
     cycloid Willis row (ω − ω3)/(0 − ω3) = z5/z4), the centre gear at (1 + a(N + 1)) ω with
@@ -208,20 +224,63 @@ def test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage()
     η1 is the first stage's load-dependent ISO/TR 14179-2 efficiency at the solution; η_c
     the cycloid mesh's, from the pin ring and crank bearings of the file (computed here).
     """
-    from powergraph.gears.cycloid_loss import (CrankBearing, PinContact, PinRing,
-                                               cycloid_mesh_loss)
+    from powergraph.model import model_from_dict
 
-    result = solve(load("rv40e_friction.yaml"))
+    data = _rv40e_friction_data()
+    for link in data["links"]:
+        if link["type"] == "bearing":
+            link.pop("friction", None)
+            link.pop("drag", None)
+    result = solve(model_from_dict(data))
+    assert result.bearings == ()
     eta_1 = result.friction[0].efficiency
-    eta_c = cycloid_mesh_loss(PinRing(39, 64.0, 3.0, 1.3), PinContact(0.05, rolling=True),
-                              bearing=CrankBearing(0.0025, 13.0, 36.0)).efficiency
     a, n = 36 / 12, 39
-    eta_k = eta_c / (1 + n * (1 - eta_c))
+    eta_k = _eta_c() / (1 + n * (1 - _eta_c()))
     assert result.efficiency == pytest.approx((a * n * eta_1 * eta_k + 1 + a * eta_1)
                                               / (1 + a * (n + 1)), rel=1e-9)
+
+
+def test_rv40e_friction_model_with_its_support_bearings_by_hand() -> None:
+    """models/rv40e_friction.yaml with its support bearings, against the derivation above
+    extended by the bearing torques (docs/losses.md, "Bearing friction and drag").
+
+    The three bearings at ω = 15 rpm output (speeds as above):
+
+    - input shaft [1, 0], drag M_in = 0.02 + 0.00001·1815 N·m, Δω = ω_in = 121 ω: the sun's
+      mesh torque is T1' = T_in − M_in;
+    - main bearings [6, 0], drag M_m = 2 N·m on the output body, Δω = ω;
+    - crank supports [3, 7], two instances (one per crank), Δω = −Nω − ω = −(N + 1) ω:
+      M_c = 2 (μ F d/2 + 0.02 N·m) with μ = 0.0018, d = 20 mm and F the tangential tooth
+      force on one planet, |T2|/(2 r_2) = a η1 T1'/(2 a r_1) = η1 T1'/(2 r_1) (r_1 = 9 mm,
+      the working = reference pitch radius of the V-zero pair, m z1/2). Since Δω < 0 the
+      torque is +M_c on the crank and −M_c on the output body.
+
+    The crank body's balance T2 − (T4 + T5) + M_c = 0 with T4 + T5 = −T4/(N η_K) gives
+    T4 = (a η1 T1' − M_c) N η_K, and the output body takes
+    T4 + (1 + a η1) T1' − M_c − M_m = T_load = 412 N·m. With K = a N η1 η_K + 1 + a η1 and
+    M_c = 0.04 + μ d η1 T1'/(2 r_1):
+
+        T1' (K − μ d η1 (N η_K + 1)/(2 r_1)) = 412 + M_m + 0.04 (N η_K + 1),
+
+    T_in = T1' + M_in, and η = 412 ω / (T_in · 121 ω). Each bearing loses M·|Δω|.
+    """
+    result = solve(load("rv40e_friction.yaml"))
+    assert_conservation(result)
+    eta_1 = result.friction[0].efficiency
+    a, n, mu, d, r_1 = 36 / 12, 39, 0.0018, 0.020, 0.009
+    eta_k = _eta_c() / (1 + n * (1 - _eta_c()))
+    w = 15 * 2 * math.pi / 60
+    m_in, m_m = 0.02 + 0.00001 * 1815, 2.0
+    k = a * n * eta_1 * eta_k + 1 + a * eta_1
+    t_1 = (412 + m_m + 0.04 * (n * eta_k + 1)) / (k - mu * d * eta_1 * (n * eta_k + 1) / (2 * r_1))
+    m_c = 0.04 + mu * d * eta_1 * t_1 / (2 * r_1)
+    t_in = t_1 + m_in
+    assert result.efficiency == pytest.approx(412 / (121 * t_in), rel=1e-9)
+    losses = {b.node: b.loss for b in result.bearings}
+    assert losses == pytest.approx({"bearing 1-0": m_in * 121 * w, "bearing 6-0": m_m * w,
+                                    "bearing 3-7": m_c * (n + 1) * w}, rel=1e-9)
     # The catalogue's rated point: 412 N·m at 15 rpm output.
-    assert result.kinematics.body_speeds[result.model.body_of["6"]] * 60 / (2 * math.pi) \
-        == pytest.approx(15.0, rel=1e-12)
-    assert result.output_power == pytest.approx(412 * 15 * 2 * math.pi / 60, rel=1e-12)
+    assert result.kinematics.body_speeds[result.model.body_of["6"]] == pytest.approx(w, rel=1e-12)
+    assert result.output_power == pytest.approx(412 * w, rel=1e-12)
     # A physically plausible RV efficiency (catalogue curves: 80-90 % at rated torque).
     assert 0.80 < result.efficiency < 0.95

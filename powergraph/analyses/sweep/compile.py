@@ -24,7 +24,7 @@ from powergraph.analyses.sweep import backends
 from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.paths import Parameter, broadcast_values, parse_paths
 from powergraph.analyses.sweep.result import SweepResult
-from powergraph.errors import UsageError
+from powergraph.errors import ModelError, UsageError
 from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
 from powergraph.statics.equilibrium import loads_of, solve_equilibrium
@@ -135,6 +135,7 @@ class CompiledSweep:
             paths = [paths]
         if backend not in BACKENDS:
             raise UsageError(f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}")
+        refuse_loss_blocks(model, "the compiled sweep")
         self.model = model
         self.parameters: tuple[Parameter, ...] = parse_paths(model, paths)
         self.layout: Layout = layout_of(model, self.parameters)
@@ -375,6 +376,29 @@ def _progress(n: int, chunk_size: int, quiet: bool) -> Iterator[Callable[[int], 
     with tqdm(total=n, unit="variant", unit_scale=True, file=sys.stderr,
               delay=PROGRESS_DELAY, desc="sweep", leave=False) as bar:
         yield bar.update
+
+
+def refuse_loss_blocks(model: Model, what: str) -> None:
+    """Refuse a model whose losses are not constant efficiencies: a mesh's ``friction:``
+    or ``pins:``, a bearing's ``friction:``/``drag:``, a component's ``drag:`` (evaluated
+    on plain efficiencies they would silently vanish). A caller that has replaced them by
+    efficiencies passes a model without them.
+
+    >>> from powergraph.model import load_model
+    >>> m = load_model("models/rv40e_friction.yaml")
+    >>> refuse_loss_blocks(m, "the compiled sweep")   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.ModelError: links[0].friction: the compiled sweep takes constant ...
+    """
+    places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"
+              for link in model.links for key, block in link.blocks.items()
+              if key in ("friction", "drag")]
+    places += [f"components.{c.raw_id}.drag" for c in model.components.values()
+               if c.drag is not None]
+    if places:
+        raise ModelError(f"{what} takes constant efficiencies; replace this block by an "
+                         f"efficiency, or use powergraph solve / map", places[0])
 
 
 def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> CompiledSweep:

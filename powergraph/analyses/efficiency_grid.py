@@ -1,0 +1,361 @@
+"""Load-dependent efficiencies on a whole grid of operating points at once (docs/losses.md).
+
+A load-dependent mesh law (ISO/TR 14179-2) or bearing friction makes every point of an
+efficiency map its own fixed point: forces → coefficients and bearing torques →
+efficiencies and torques → forces (:func:`powergraph.statics.friction.solve_with_friction`).
+Here the same passes run on every point together, with arrays: for one direction pattern
+(who drives each element, taken from a single solve at a reference point) the torque
+balance of each point is a small square system built from
+:func:`powergraph.kinematics.elements.element_stencil`, and all of them are solved by one
+batched ``numpy.linalg.solve``. Each point stops at the pass where the single solve would
+stop (no efficiency changing by more than the tolerance, no bearing torque by more than the
+tolerance times the largest torque of the train), so its values are the single solve's.
+
+After convergence each point is checked: the pattern its forces give must agree with the
+assumed one, and its balance must be well conditioned. Points that fail, and points that do
+not converge, are solved one by one with :func:`powergraph.statics.solve`; a point that does
+not converge there either is reported, not dropped.
+
+Examples
+--------
+>>> import powergraph as pg
+>>> m = pg.load_model("models/rv40e_friction.yaml")
+>>> g = solve_grid(m, np.array([1815.0, 1815.0]), np.array([100.0, 412.0]))
+>>> g.efficiency.round(4).tolist(), g.single_solves, g.unconverged.tolist()
+([0.8264, 0.8702], 0, [False, False])
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from powergraph.errors import SolveError
+from powergraph.gears.mesh_loss import iso14179_mu, mesh_loss, path_of_contact
+from powergraph.kinematics import element_stencil, elements_of, solve_speeds
+from powergraph.model.block_bearing import gear_radius, load_meshes
+from powergraph.model.spec import Model
+from powergraph.statics import solve
+from powergraph.statics.bearings import SPEED_NOISE
+from powergraph.statics.directions import FORCE_NOISE, relative_speeds
+from powergraph.statics.equilibrium import loads_of
+from powergraph.statics.friction import MAX_PASSES, friction_meshes
+
+RPM = 2.0 * math.pi / 60.0
+#: The single solve's convergence test (the default of ``solve_with_friction``): no
+#: efficiency changes by more than this, no bearing torque by more than this times the
+#: largest torque of the train.
+TOLERANCE = 1e-12
+#: A balance whose condition number reaches this is solved one point at a time (as the
+#: single solve then falls back to a least-squares solution).
+MAX_CONDITION = 1e12
+
+
+@dataclass(frozen=True)
+class GridSolution:
+    """Efficiency and input power (W) per point; ``unconverged`` marks points whose passes
+    did not converge (efficiency NaN); ``single_solves`` counts points solved one by one."""
+
+    efficiency: np.ndarray
+    input_power: np.ndarray
+    unconverged: np.ndarray
+    single_solves: int
+
+
+def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> GridSolution:
+    """Solve ``model`` at input speeds ``speeds_rpm[p]`` (rpm) with output loads
+    ``torques[p]`` (N·m, resisting the output's motion), all points at once.
+
+    Parameters
+    ----------
+    model : Model
+        A 1-DOF train with one input and one output port (their loads are replaced).
+    speeds_rpm, torques : ndarray
+        One value per point (same shape, 1-D).
+
+    Returns
+    -------
+    GridSolution
+    """
+    sense = float(np.sign(solve_speeds(model).ratio or 1.0))
+    efficiency = np.full(speeds_rpm.shape, np.nan)
+    power = np.full(speeds_rpm.shape, np.nan)
+    pending = np.ones(speeds_rpm.shape, dtype=bool)
+    for sign in (1.0, -1.0):
+        group = np.flatnonzero(np.sign(speeds_rpm) == sign)
+        if group.size:
+            done = _batch(model, speeds_rpm[group], torques[group], sense)
+            if done is not None:
+                ok, eta, p_in = done
+                efficiency[group[ok]], power[group[ok]] = eta[ok], p_in[ok]
+                pending[group[ok]] = False
+    unconverged = np.zeros(speeds_rpm.shape, dtype=bool)
+    for p in np.flatnonzero(pending):
+        try:
+            result = solve(at_point(model, speeds_rpm[p] * RPM, torques[p], sense))
+        except SolveError:
+            unconverged[p] = True
+            continue
+        efficiency[p], power[p] = result.efficiency, result.input_power
+    return GridSolution(efficiency=efficiency, input_power=power, unconverged=unconverged,
+                        single_solves=int(np.count_nonzero(pending)))
+
+
+def at_point(model: Model, speed: float, torque: float, sense: float) -> Model:
+    """``model`` at input speed ``speed`` (rad/s) with output load ``torque`` (N·m)."""
+    model = model.with_port(model.inputs[0].index, speed=speed, power=None, torque=None)
+    # The load opposes the output's motion, whose sense is the input's over the ratio.
+    return model.with_port(model.outputs[0].index, speed=None, power=None,
+                           torque=-float(torque) * float(np.sign(speed) * sense))
+
+
+def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
+           sense: float) -> tuple[np.ndarray, ...] | None:
+    """``(settled, efficiency, input power)`` of points whose input speeds share a sign,
+    or None when the train's balance is not a square system with one consistent pattern
+    at a reference point (the first, middle or last that converges; then every point is
+    solved alone)."""
+    reference = None
+    for p in dict.fromkeys((0, speeds_rpm.size // 2, speeds_rpm.size - 1)):
+        try:
+            reference = solve(at_point(model, speeds_rpm[p] * RPM, torques[p], sense))
+            break
+        except SolveError:
+            continue
+    if reference is None or reference.lock is not None or reference.search is not None:
+        return None
+    grid = _Grid.build(model, speeds_rpm, torques, sense, reference)
+    if grid is None:
+        return None
+    return grid.iterate(TOLERANCE, MAX_PASSES)
+
+
+@lru_cache(maxsize=256)
+def _loss(geometry: Any) -> Any:
+    return mesh_loss(geometry)
+
+
+@lru_cache(maxsize=256)
+def _working_radius(geometry: Any) -> float:
+    return path_of_contact(geometry).working_radius_1 / 1000.0
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """The arrays of one batch: ``P`` points, bodies ``B`` (rows), elements then unknown
+    external torques (columns)."""
+
+    model: Model
+    elements: tuple
+    codes: np.ndarray          # the assumed driver code per element (+1 a, -1 b, 0)
+    row: dict
+    unknown: tuple
+    out_row: int
+    given: np.ndarray          # (P,) the output's load torque
+    speeds: np.ndarray         # (P, B) body speeds, rad/s
+    rel: np.ndarray            # (P, E) w_a - w_c, round-off set to 0
+    frictions: dict
+    bearings: list
+
+    @classmethod
+    def build(cls, model: Model, speeds_rpm: np.ndarray, torques: np.ndarray, sense: float,
+              reference: Any) -> "_Grid | None":
+        elements = elements_of(model)
+        row = {body.id: r for r, body in enumerate(model.bodies)}
+        values, inverse = np.unique(speeds_rpm, return_inverse=True)
+        kins = [solve_speeds(at_point(model, v * RPM, torques[0], sense)) for v in values]
+        loads = loads_of(at_point(model, values[0] * RPM, torques[0], sense), kins[0])
+        out_body = model.body_of[model.outputs[0].component]
+        if set(loads.given) != {out_body} or \
+                len(model.bodies) != len(elements) + len(loads.unknown):
+            return None
+        codes = np.array([1 if f.driver is not None and f.driver == f.a else
+                          -1 if f.driver is not None else 0 for f in reference.elements])
+        speeds = np.array([[k.body_speeds[b.id] for b in model.bodies] for k in kins])[inverse]
+        rel = np.array([relative_speeds(elements, k) for k in kins])[inverse]
+        given = -torques * np.sign(speeds_rpm) * sense
+        return cls(model, elements, codes, row, loads.unknown, row[out_body], given, speeds,
+                   rel, friction_meshes(model), _bearing_specs(model, row, elements))
+
+    def factors(self, eta: np.ndarray) -> np.ndarray:
+        """``(P, E)`` element factors: η where gear a drives, 1/η where b drives, else 1."""
+        return np.where(self.codes > 0, eta, np.where(self.codes < 0, 1.0 / eta, 1.0))
+
+    def balance(self, factors: np.ndarray, extra: np.ndarray) -> tuple[np.ndarray, ...]:
+        """The stacked torque balances ``(P, B, B)``, their right-hand sides and solutions."""
+        n_points, n_el = factors.shape
+        matrix = np.zeros((n_points, len(self.row), len(self.row)))
+        for k, el in enumerate(self.elements):
+            for body, coefficient in zip(el.bodies, element_stencil(el.ratio, factors[:, k])):
+                matrix[:, self.row[body], k] += coefficient
+        for j, body in enumerate(self.unknown):
+            matrix[:, self.row[body], n_el + j] = 1.0
+        rhs = -extra.copy()
+        rhs[:, self.out_row] -= self.given
+        return matrix, rhs, np.linalg.solve(matrix, rhs[..., None])[..., 0]
+
+    def iterate(self, tolerance: float, max_passes: int) -> tuple[np.ndarray, ...] | None:
+        """The passes of ``solve_with_friction`` on every point: start ideal without
+        bearing torques; solve; update the efficiencies and bearing torques; a point
+        settles at the first pass whose updates are within ``tolerance`` and keeps that
+        pass's values. Returns ``(accepted, efficiency, input power)``, or None when a
+        balance is singular (then every point is solved alone)."""
+        n_points, n_el = self.rel.shape
+        eta = np.tile([el.efficiency for el in self.elements], (n_points, 1))
+        for k, f in self.frictions.items():
+            column = self._column(k)
+            eta[:, column] = 1.0 if f.load_dependent else f.efficiency()[1]
+        extra = np.zeros((n_points, len(self.row)))
+        settled = np.zeros(n_points, dtype=bool)
+        broken = np.zeros(n_points, dtype=bool)        # a coefficient left [0, 1): alone
+        out = np.full((3, n_points), np.nan)           # efficiency, input power, agrees
+        for _ in range(max_passes):
+            factors = self.factors(eta)
+            try:
+                matrix, rhs, x = self.balance(factors, extra)
+            except np.linalg.LinAlgError:
+                return None
+            new_eta, valid = self._efficiencies(eta, factors, x)
+            broken |= ~valid & ~settled
+            new_extra = self._bearing_torques(factors, x)
+            change = np.max(np.abs(new_eta - eta), axis=1, initial=0.0)
+            moved = self._moved(extra, new_extra, rhs, x)
+            now = ~settled & ~broken & (change <= tolerance) & (moved <= tolerance)
+            if np.any(now):
+                out[:, now] = self._outputs(matrix[now], rhs[now], x[now], factors[now],
+                                            now)
+                settled |= now
+            if (settled | broken).all():
+                break
+            eta, extra = new_eta, new_extra
+        ok = settled & (out[2] > 0)
+        return ok, out[0], out[1]
+
+    def _column(self, link: int) -> int:
+        return next(k for k, el in enumerate(self.elements) if el.link == link)
+
+    def _efficiencies(self, eta: np.ndarray, factors: np.ndarray,
+                      x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The friction meshes' efficiencies at the forces and speeds of ``x``, and where
+        every coefficient is in [0, 1) (elsewhere the single solve refuses it)."""
+        new = eta.copy()
+        valid = np.ones(x.shape[0], dtype=bool)
+        for link, friction in self.frictions.items():
+            if not friction.load_dependent:
+                continue
+            k = self._column(link)
+            el = self.elements[k]
+            radius = _working_radius(friction.geometry)
+            on_a, on_b, _ = element_stencil(el.ratio, factors[:, k])
+            torque_1 = (on_a if friction.gear_1 == el.a else on_b) * x[:, k]
+            instances = max(self.model.components[c].count for c in (el.a, el.b))
+            gear = self.row[self.model.body_of[friction.gear_1]]
+            carrier = self.row[el.body_c]
+            mu = iso14179_mu(np.abs(torque_1) / radius / instances, friction.face_width,
+                             np.abs(self.speeds[:, gear] - self.speeds[:, carrier]) * radius,
+                             friction.geometry, friction.viscosity, friction.roughness,
+                             friction.lubricant_factor)
+            valid &= (mu >= 0.0) & (mu < 1.0)
+            new[:, k] = dataclasses.replace(_loss(friction.geometry), mu=mu).efficiency
+        return new, valid
+
+    def _bearing_torques(self, factors: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """``(P, B)`` the bearings' and drags' torques on the bodies (as
+        :func:`powergraph.statics.bearings.bearing_states`)."""
+        torques = np.zeros((x.shape[0], len(self.row)))
+        for spec in self.bearings:
+            w_1, w_2 = self.speeds[:, spec["rows"][0]], self.speeds[:, spec["rows"][1]]
+            rel = w_1 - w_2
+            rel = np.where(np.abs(rel) <= SPEED_NOISE * np.maximum(np.abs(w_1), np.abs(w_2)),
+                           0.0, rel)
+            load = np.zeros(x.shape[0])
+            for k, on_a_side, radius, count in spec["meshes"]:
+                stencil = element_stencil(self.elements[k].ratio, factors[:, k])
+                load += np.abs(stencil[0 if on_a_side else 1] * x[:, k]) / radius / count
+            m_1 = (spec["friction"].torque(load) if spec["friction"] is not None else 0.0) + \
+                (spec["drag"].torque(rel) if spec["drag"] is not None else 0.0)
+            torque = np.where(rel != 0.0, spec["count"] * m_1, 0.0) * np.sign(rel)
+            torques[:, spec["rows"][0]] -= torque
+            torques[:, spec["rows"][1]] += torque
+        return torques
+
+    def _moved(self, extra: np.ndarray, new: np.ndarray, rhs: np.ndarray,
+               x: np.ndarray) -> np.ndarray:
+        """Largest change of a bearing torque relative to the largest torque acting (the
+        given torques with the bearings', the solved external torques, the new ones)."""
+        moved = np.max(np.abs(new - extra), axis=1, initial=0.0)
+        n_el = len(self.elements)
+        free = np.ones(len(self.row), dtype=bool)
+        free[[self.row[b] for b in self.unknown]] = False
+        scale = np.maximum.reduce([np.max(np.abs(-rhs[:, free]), axis=1, initial=0.0),
+                                   np.max(np.abs(x[:, n_el:]), axis=1, initial=0.0),
+                                   np.max(np.abs(new), axis=1, initial=0.0)])
+        return np.where(moved > 0.0, moved / np.where(scale > 0.0, scale, 1.0), 0.0)
+
+    def _outputs(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
+                 factors: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """Efficiency, input power and whether the point is accepted (its forces agree with
+        the assumed pattern and its balance is well conditioned)."""
+        n_el = len(self.elements)
+        speeds = self.speeds[mask]
+        w_in = speeds[:, self.row[self.model.body_of[self.model.inputs[0].component]]]
+        t_in = x[:, n_el + self.unknown.index(
+            self.model.body_of[self.model.inputs[0].component])]
+        p_in = t_in * w_in
+        p_out = -self.given[mask] * speeds[:, self.out_row]
+        found = self._pattern(matrix, rhs, x, factors, mask)
+        agrees = np.all((found == 0) | (found == self.codes), axis=1)
+        agrees &= np.linalg.cond(matrix) < MAX_CONDITION
+        return np.array([p_out / p_in, p_in, agrees.astype(float)])
+
+    def _pattern(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
+                 factors: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        """Who drives each element at ``x`` (as :func:`powergraph.statics.directions.
+        pattern_of`, with :func:`~powergraph.statics.directions.force_scales`)."""
+        n_el = len(self.elements)
+        external = -rhs.copy()
+        for j, body in enumerate(self.unknown):
+            external[:, self.row[body]] = x[:, n_el + j]
+        load = np.abs(external)
+        for k, el in enumerate(self.elements):
+            for body, c in zip(el.bodies, element_stencil(el.ratio, factors[:, k])):
+                load[:, self.row[body]] += np.abs(c * x[:, k])
+        frame = self.row[self.model.frame_body]
+        codes = np.zeros((x.shape[0], n_el), dtype=int)
+        rel = self.rel[mask]
+        for k, el in enumerate(self.elements):
+            own = [self.row[b] for b in el.bodies if self.row[b] != frame]
+            scale = np.max(load[:, own], axis=1) if own else np.max(load, axis=1)
+            lam, r = x[:, k], rel[:, k]
+            passes = (r != 0.0) & (np.abs(lam) > FORCE_NOISE * scale)
+            codes[:, k] = np.where(passes, np.sign(-lam * r), 0).astype(int)
+        return codes
+
+
+def _bearing_specs(model: Model, row: dict, elements: tuple) -> list[dict]:
+    """What :func:`powergraph.statics.bearings.bearing_states` reads, per bearing and drag:
+    the two bodies' rows, the instances, the blocks and the meshes loading it."""
+    column = {el.link: k for k, el in enumerate(elements)}
+    specs = []
+    for link in model.links:
+        if link.type == "bearing" and link.blocks:
+            friction = link.blocks.get("friction")
+            meshes = []
+            for mesh, gear in (load_meshes(model, link.between[0]) if friction else ()):
+                k = column[mesh]
+                count = max(model.components[c].count for c in model.links[mesh].between)
+                meshes.append((k, gear == elements[k].a, gear_radius(model, mesh, gear), count))
+            specs.append({"rows": tuple(row[model.body_of[c]] for c in link.between),
+                          "count": max(model.components[c].count for c in link.between),
+                          "friction": friction, "drag": link.blocks.get("drag"),
+                          "meshes": meshes})
+    for component in model.components.values():
+        if component.drag is not None:
+            specs.append({"rows": (row[model.body_of[component.id]], row[model.frame_body]),
+                          "count": component.count, "friction": None, "drag": component.drag,
+                          "meshes": []})
+    return specs
