@@ -14,6 +14,17 @@ from powergraph.testing import assert_conservation
 
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "models"
+SLOW_TESTS = Path(__file__).resolve().parent / "slow_tests.txt"
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    """Mark `slow` the tests listed in tests/slow_tests.txt (measured, 0.15 s or more),
+    beside those marked in their modules."""
+    listed = {line.strip() for line in SLOW_TESTS.read_text(encoding="utf-8").splitlines()
+              if line.strip() and not line.startswith("#")}
+    for item in items:
+        if item.nodeid in listed:
+            item.add_marker(pytest.mark.slow)
 
 
 @pytest.fixture

@@ -84,7 +84,7 @@ def _cycloid_stage():
 def _cycloid_study():
     from powergraph.analyses.cycloid import fluctuation_study
 
-    return fluctuation_study(1.0)
+    return fluctuation_study(1.0, teeth=(9, 25), grades=(5, 9))   # a small grid
 
 
 def _cycloid_train():
