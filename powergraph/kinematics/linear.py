@@ -213,9 +213,10 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
     if x is None or not np.all(np.isfinite(x)):
         return failed
     d = scales(x)
-    if guess is None and passes <= 1 and d.max() <= WELL_SCALED * d.min():
-        # Unknowns of one order of magnitude: partial pivoting already solved the system
-        # as accurately as the scaled passes would; only its condition is still needed.
+    if passes <= 1 and d.max() <= WELL_SCALED * d.min():
+        # Unknowns within three decades: partial pivoting (on the system as given or scaled
+        # by the guess) already solved it as accurately as further scaled passes would;
+        # only its condition is still needed.
         r = np.abs(a * d).max(axis=1)
         r[r == 0] = 1.0
         return Solved(x, float(np.linalg.cond(a * d / r[:, None])))
