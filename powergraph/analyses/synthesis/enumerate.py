@@ -32,7 +32,8 @@ class EnumerationResult:
     Attributes
     ----------
     links, dof : the size asked for
-    graphs : one :class:`TrainGraph` per displacement graph (non-isomorphic trains)
+    graphs : one :class:`TrainGraph` per displacement graph (non-isomorphic trains), those
+        with the same rotation graph together
     rotation_index : for each graph, the number of its rotation graph (0, 1, ...)
     """
 
@@ -136,9 +137,11 @@ def enumerate_trains(links: int, dof: int = 1, fractionated: bool = False) -> En
                 seen.update(images(gears, group))
                 trains.append((axes, gears))
     _, rotation = classify([g for _, g in trains], lambda g: rotation_graph(links, g))
-    graphs = tuple(_train_graph(links, axes, gears, f"{links}-link d-graph {i + 1}")
-                   for i, (axes, gears) in enumerate(trains))
-    return EnumerationResult(links=links, dof=dof, graphs=graphs, rotation_index=tuple(rotation))
+    order = sorted(range(len(trains)), key=lambda i: (rotation[i], i))  # grouped by r-graph
+    graphs = tuple(_train_graph(links, *trains[i], f"{links}-link d-graph {k + 1} "
+                                f"(r-graph {rotation[i] + 1})") for k, i in enumerate(order))
+    return EnumerationResult(links=links, dof=dof, graphs=graphs,
+                             rotation_index=tuple(rotation[i] for i in order))
 
 
 def _check(links: Any, dof: Any) -> None:
