@@ -21,7 +21,7 @@ from powergraph.errors import UsageError
 #: complete set of one-degree-of-freedom planetary gear trains with up to nine links",
 #: Journal of Mechanical Design 141(4), 2019 (abstract: 6 to 9 links).
 PUBLISHED = {1: {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837)}}
-#: Largest number of links :func:`enumerate_trains` accepts (9 links take hours).
+#: Largest number of links :func:`enumerate_trains` accepts (9 links: slow, see docs).
 MAX_LINKS = 9
 
 
