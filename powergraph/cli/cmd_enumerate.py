@@ -18,6 +18,8 @@ from powergraph.errors import UsageError
 
 #: Graphs per picture sheet (10 x 10).
 SHEET = 100
+#: Basic efficiency written as the model files' default (a typical spur mesh).
+MESH_EFFICIENCY = 0.98
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -84,7 +86,8 @@ def _write(folder: Path, result) -> int:
     from powergraph.plot.synthesis import plot_graphs
 
     for index, graph in enumerate(result.graphs, start=1):
-        text = yaml.safe_dump(model_document(graph), sort_keys=False, allow_unicode=True)
+        text = yaml.safe_dump(model_document(graph, mesh_efficiency=MESH_EFFICIENCY),
+                              sort_keys=False, allow_unicode=True)
 
         def write(tmp: str, text: str = text) -> None:
             Path(tmp).write_text(text, encoding="utf-8")

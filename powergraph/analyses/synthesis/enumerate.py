@@ -67,11 +67,13 @@ class EnumerationResult:
         return None
 
     def to_dict(self) -> dict[str, Any]:
-        """``{links, dof, rotation_graphs, displacement_graphs, graphs: [...]}``."""
+        """``{links, dof, rotation_graphs, displacement_graphs, graphs: [...]}``; each graph
+        ``{name, rotation_graph (numbered from 1, as in the name), axes, turning_pairs,
+        gear_pairs}``."""
         return {"links": self.links, "dof": self.dof,
                 "rotation_graphs": self.rotation_graphs,
                 "displacement_graphs": self.displacement_graphs,
-                "graphs": [{"name": g.name, "rotation_graph": r,
+                "graphs": [{"name": g.name, "rotation_graph": r + 1,
                             "axes": [sorted(a) for a in axes_of(g)],
                             "turning_pairs": [list(t) for t in g.turning_pairs],
                             "gear_pairs": [list(p) for p in g.gear_pairs]}
