@@ -13,8 +13,10 @@ Two levels (Yang & Ding 2018, "New graph representation for planetary gear train
 Axis labels and link numbers are names only, so they never enter the comparison: vertices
 match on their kind, edges on theirs (:func:`node_match`, :func:`edge_match`). A
 Weisfeiler-Lehman hash sorts graphs into buckets first; ``networkx``'s VF2 decides within
-a bucket (:func:`unique`). :func:`canonical_form` is an exact certificate: equal for two
-graphs exactly when they are isomorphic.
+a bucket (:func:`classify`). Axis structures are trees: :func:`structure_code` and
+:func:`automorphisms` use their centre-rooted canonical codes instead.
+:func:`canonical_form` is an exact certificate for any of these graphs, equal for two
+graphs exactly when they are isomorphic (slow; for tests and spot checks).
 """
 from __future__ import annotations
 
@@ -143,8 +145,9 @@ def automorphisms(links: int, axes: Sequence[Iterable[int]]) -> list[tuple[int, 
     [(0, 1, 2), (0, 2, 1)]
     """
     graph = incidence_graph(links, list(axes))
-    root, codes = _rooted_codes(graph)
-    return [tuple(m[(0, n)][1] for n in range(links)) for m in _maps(graph, codes, root, root, None)]
+    root, codes, parent = _rooted_codes(graph)
+    return [tuple(m[(0, n)][1] for n in range(links))
+            for m in _maps(graph, codes, parent, root, root)]
 
 
 def structure_code(links: int, axes: Sequence[Iterable[int]]) -> str:
@@ -155,13 +158,13 @@ def structure_code(links: int, axes: Sequence[Iterable[int]]) -> str:
     >>> structure_code(3, [{0, 1}, {0, 2}]) == structure_code(3, [{1, 2}, {2, 0}])
     True
     """
-    root, codes = _rooted_codes(incidence_graph(links, list(axes)))
+    root, codes, _ = _rooted_codes(incidence_graph(links, list(axes)))
     return codes[root]
 
 
-def _rooted_codes(tree: Any) -> tuple[Any, dict]:
+def _rooted_codes(tree: Any) -> tuple[Any, dict, dict]:
     """The tree rooted at its centre (a link and an axis never swap, so with two centres
-    either one is fixed by every automorphism), and each vertex's subtree code."""
+    either one is fixed by every automorphism), each vertex's subtree code, its parent."""
     import networkx as nx
 
     root = min(nx.center(tree), key=lambda v: tree.nodes[v]["kind"])
@@ -175,15 +178,13 @@ def _rooted_codes(tree: Any) -> tuple[Any, dict]:
     for v in reversed(order):
         inner = sorted(codes[w] for w in tree[v] if w != parent[v])
         codes[v] = tree.nodes[v]["kind"][0] + "(" + "".join(inner) + ")"
-    codes["parent"] = parent  # type: ignore[assignment]
-    return root, codes
+    return root, codes, parent
 
 
-def _maps(tree: Any, codes: dict, v: Any, w: Any, parent: Any) -> Iterable[dict]:
+def _maps(tree: Any, codes: dict, parent: dict, v: Any, w: Any) -> Iterable[dict]:
     """Every isomorphism of the subtree at ``v`` onto the subtree at ``w`` (equal codes)."""
-    up = codes["parent"]
-    mine = [c for c in tree[v] if c != up[v]]
-    theirs = [c for c in tree[w] if c != up[w]]
+    mine = [c for c in tree[v] if c != parent[v]]
+    theirs = [c for c in tree[w] if c != parent[w]]
     groups: dict[str, tuple[list, list]] = {}
     for c in mine:
         groups.setdefault(codes[c], ([], []))[0].append(c)
@@ -194,7 +195,7 @@ def _maps(tree: Any, codes: dict, v: Any, w: Any, parent: Any) -> Iterable[dict]
         options.append([list(zip(source, perm)) for perm in permutations(target)])
     for pairing in product(*options):
         pairs = [pair for group in pairing for pair in group]
-        for parts in product(*(list(_maps(tree, codes, a, b, v)) for a, b in pairs)):
+        for parts in product(*(list(_maps(tree, codes, parent, a, b)) for a, b in pairs)):
             merged = {v: w}
             for part in parts:
                 merged.update(part)
