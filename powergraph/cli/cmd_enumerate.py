@@ -29,7 +29,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Enumerate the non-isomorphic graphs of planetary gear trains with N "
                     "links and D degrees of freedom (N - 1 - D gear pairs): rotation "
                     "graphs and displacement graphs (the trains), as Yang & Ding (2019) "
-                    "count them. 8 links take about 15 s; 9 links far longer.")
+                    "count them. 8 links take about 15 s, 9 links minutes.")
     parser.add_argument("--links", metavar="N", help="number of links, frame included (3-9)")
     parser.add_argument("--dof", metavar="D", default="1",
                         help="degrees of freedom (default 1; at most N - 2)")
