@@ -4,7 +4,7 @@ Prints, for each N, the counts of rotation and displacement graphs beside the pu
 ones (Yang & Ding 2019, "The complete set of one-degree-of-freedom planetary gear trains
 with up to nine links", J. Mech. Des. 141(4): 6 links 27/81, 7 links 152/647, 8 links
 1070/6360), the time, and the time over the 6-link time measured in the same run.
-``--max-links`` stops earlier (8 links take minutes); ``--dof 2`` times the 2-DOF graphs.
+``--max-links`` stops earlier or goes on to 9; ``--dof 2`` times the 2-DOF graphs.
 
 Usage: python benchmarks/enumerate.py [--max-links 8] [--dof 1] [--json]
 """

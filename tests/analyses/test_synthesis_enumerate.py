@@ -345,3 +345,18 @@ def test_result_protocol() -> None:
 def test_six_link_report_quotes_the_published_counts() -> None:
     report = enumerate_trains(6).text_report()
     assert "rotation graphs (r-graphs)      27   (published: 27)" in report
+
+
+@pytest.mark.parametrize("links", [4, 5, 6])
+def test_tree_automorphisms_equal_the_vf2_self_isomorphisms(links: int) -> None:
+    from networkx.algorithms.isomorphism import GraphMatcher
+
+    from powergraph.analyses.synthesis.canonical import (automorphisms, edge_match,
+                                                         incidence_graph, node_match)
+    from powergraph.analyses.synthesis.rules import axis_structures
+
+    for axes in axis_structures(links):
+        graph = incidence_graph(links, list(axes))
+        matcher = GraphMatcher(graph, graph, node_match=node_match, edge_match=edge_match)
+        vf2 = {tuple(m[(0, n)][1] for n in range(links)) for m in matcher.isomorphisms_iter()}
+        assert sorted(automorphisms(links, axes)) == sorted(vf2)

@@ -25,6 +25,9 @@ def test_json_counts(capsys) -> None:
     assert (data["links"], data["dof"], data["rotation_graphs"],
             data["displacement_graphs"]) == (4, 1, 2, 3)
     assert len(data["graphs"]) == 3
+    assert sorted({g["rotation_graph"] for g in data["graphs"]}) == [1, 2]
+    assert all(len(g["gear_pairs"]) == 2 and len(g["turning_pairs"]) == 3
+               for g in data["graphs"])
 
 
 def test_text_report_quotes_the_published_six_link_counts(capsys) -> None:
@@ -43,7 +46,9 @@ def test_output_folder_gets_models_that_solve_and_a_sheet(capsys, tmp_path) -> N
     for path in files:
         model = load_model(path)
         assert "placeholder" in model.description
-        assert_conservation(solve(model))
+        result = solve(model)
+        assert_conservation(result)
+        assert 0 < result.efficiency <= 1
 
 
 def test_two_dof_json(capsys) -> None:

@@ -13,8 +13,10 @@ Two levels (Yang & Ding 2018, "New graph representation for planetary gear train
 Axis labels and link numbers are names only, so they never enter the comparison: vertices
 match on their kind, edges on theirs (:func:`node_match`, :func:`edge_match`). A
 Weisfeiler-Lehman hash sorts graphs into buckets first; ``networkx``'s VF2 decides within
-a bucket (:func:`unique`). :func:`canonical_form` is an exact certificate: equal for two
-graphs exactly when they are isomorphic.
+a bucket (:func:`classify`). Axis structures are trees: :func:`structure_code` and
+:func:`automorphisms` use their centre-rooted canonical codes instead.
+:func:`canonical_form` is an exact certificate for any of these graphs, equal for two
+graphs exactly when they are isomorphic (slow; for tests and spot checks).
 """
 from __future__ import annotations
 
@@ -128,22 +130,76 @@ def classify(items: Iterable[T], graph_of: Callable[[T], Any]) -> tuple[list[T],
 
 
 def automorphisms(links: int, axes: Sequence[Iterable[int]]) -> list[tuple[int, ...]]:
-    """The link permutations that map an axis structure onto itself (VF2 with the matcher).
+    """The link permutations that map an axis structure onto itself.
 
     Two gear-pair sets on the same axis structure give isomorphic d-graphs exactly when
     one of these permutations maps one onto the other, since the axis structure is part of
-    the d-graph.
+    the d-graph. The structure is a tree (links and axes), so its automorphisms come from
+    its centre-rooted canonical codes (Aho, Hopcroft & Ullman): children with equal codes
+    are swapped in every way, recursively. (VF2 on the structure matched with itself gives
+    the same group, more slowly; the tests compare the two.)
 
     Examples
     --------
     >>> sorted(automorphisms(3, [{0, 1}, {0, 2}]))
     [(0, 1, 2), (0, 2, 1)]
     """
-    from networkx.algorithms.isomorphism import GraphMatcher
-
     graph = incidence_graph(links, list(axes))
-    matcher = GraphMatcher(graph, graph, node_match=node_match, edge_match=edge_match)
-    return [tuple(m[(0, n)][1] for n in range(links)) for m in matcher.isomorphisms_iter()]
+    root, codes, parent = _rooted_codes(graph)
+    return [tuple(m[(0, n)][1] for n in range(links))
+            for m in _maps(graph, codes, parent, root, root)]
+
+
+def structure_code(links: int, axes: Sequence[Iterable[int]]) -> str:
+    """A canonical code of an axis structure: equal exactly for isomorphic structures.
+
+    Examples
+    --------
+    >>> structure_code(3, [{0, 1}, {0, 2}]) == structure_code(3, [{1, 2}, {2, 0}])
+    True
+    """
+    root, codes, _ = _rooted_codes(incidence_graph(links, list(axes)))
+    return codes[root]
+
+
+def _rooted_codes(tree: Any) -> tuple[Any, dict, dict]:
+    """The tree rooted at its centre (a link and an axis never swap, so with two centres
+    either one is fixed by every automorphism), each vertex's subtree code, its parent."""
+    import networkx as nx
+
+    root = min(nx.center(tree), key=lambda v: tree.nodes[v]["kind"])
+    codes: dict[Any, str] = {}
+    parent = {root: None}
+    order = list(nx.dfs_preorder_nodes(tree, root))
+    for v in order:
+        for w in tree[v]:
+            if w != parent[v]:
+                parent[w] = v
+    for v in reversed(order):
+        inner = sorted(codes[w] for w in tree[v] if w != parent[v])
+        codes[v] = tree.nodes[v]["kind"][0] + "(" + "".join(inner) + ")"
+    return root, codes, parent
+
+
+def _maps(tree: Any, codes: dict, parent: dict, v: Any, w: Any) -> Iterable[dict]:
+    """Every isomorphism of the subtree at ``v`` onto the subtree at ``w`` (equal codes)."""
+    mine = [c for c in tree[v] if c != parent[v]]
+    theirs = [c for c in tree[w] if c != parent[w]]
+    groups: dict[str, tuple[list, list]] = {}
+    for c in mine:
+        groups.setdefault(codes[c], ([], []))[0].append(c)
+    for c in theirs:
+        groups[codes[c]][1].append(c)
+    options = []
+    for source, target in groups.values():
+        options.append([list(zip(source, perm)) for perm in permutations(target)])
+    for pairing in product(*options):
+        pairs = [pair for group in pairing for pair in group]
+        for parts in product(*(list(_maps(tree, codes, parent, a, b)) for a, b in pairs)):
+            merged = {v: w}
+            for part in parts:
+                merged.update(part)
+            yield merged
 
 
 def images(gear_pairs: Iterable[Sequence[int]], group: Sequence[Sequence[int]]) -> set[tuple]:

@@ -21,7 +21,7 @@ from powergraph.errors import UsageError
 #: complete set of one-degree-of-freedom planetary gear trains with up to nine links",
 #: Journal of Mechanical Design 141(4), 2019 (abstract: 6 to 9 links).
 PUBLISHED = {1: {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837)}}
-#: Largest number of links :func:`enumerate_trains` accepts (9 links take hours).
+#: Largest number of links :func:`enumerate_trains` accepts (9 links: slow, see docs).
 MAX_LINKS = 9
 
 
@@ -32,7 +32,8 @@ class EnumerationResult:
     Attributes
     ----------
     links, dof : the size asked for
-    graphs : one :class:`TrainGraph` per displacement graph (non-isomorphic trains)
+    graphs : one :class:`TrainGraph` per displacement graph (non-isomorphic trains), those
+        with the same rotation graph together
     rotation_index : for each graph, the number of its rotation graph (0, 1, ...)
     """
 
@@ -66,11 +67,13 @@ class EnumerationResult:
         return None
 
     def to_dict(self) -> dict[str, Any]:
-        """``{links, dof, rotation_graphs, displacement_graphs, graphs: [...]}``."""
+        """``{links, dof, rotation_graphs, displacement_graphs, graphs: [...]}``; each graph
+        ``{name, rotation_graph (numbered from 1, as in the name), axes, turning_pairs,
+        gear_pairs}``."""
         return {"links": self.links, "dof": self.dof,
                 "rotation_graphs": self.rotation_graphs,
                 "displacement_graphs": self.displacement_graphs,
-                "graphs": [{"name": g.name, "rotation_graph": r,
+                "graphs": [{"name": g.name, "rotation_graph": r + 1,
                             "axes": [sorted(a) for a in axes_of(g)],
                             "turning_pairs": [list(t) for t in g.turning_pairs],
                             "gear_pairs": [list(p) for p in g.gear_pairs]}
@@ -136,9 +139,11 @@ def enumerate_trains(links: int, dof: int = 1, fractionated: bool = False) -> En
                 seen.update(images(gears, group))
                 trains.append((axes, gears))
     _, rotation = classify([g for _, g in trains], lambda g: rotation_graph(links, g))
-    graphs = tuple(_train_graph(links, axes, gears, f"{links}-link d-graph {i + 1}")
-                   for i, (axes, gears) in enumerate(trains))
-    return EnumerationResult(links=links, dof=dof, graphs=graphs, rotation_index=tuple(rotation))
+    order = sorted(range(len(trains)), key=lambda i: (rotation[i], i))  # grouped by r-graph
+    graphs = tuple(_train_graph(links, *trains[i], f"{links}-link d-graph {k + 1} "
+                                f"(r-graph {rotation[i] + 1})") for k, i in enumerate(order))
+    return EnumerationResult(links=links, dof=dof, graphs=graphs,
+                             rotation_index=tuple(rotation[i] for i in order))
 
 
 def _check(links: Any, dof: Any) -> None:

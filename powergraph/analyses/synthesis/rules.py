@@ -32,8 +32,8 @@ def axis_structures(links: int) -> list[Axes]:
     """Every axis structure of ``links`` links, one per isomorphism class.
 
     Built from the non-isomorphic trees on the links, each edge set split into connected
-    groups (the coaxial turning pairs); duplicates are removed with
-    :func:`~powergraph.analyses.synthesis.canonical.unique`.
+    groups (the coaxial turning pairs); duplicates are removed by their canonical tree
+    code (:func:`~powergraph.analyses.synthesis.canonical.structure_code`).
 
     Examples
     --------
@@ -44,12 +44,13 @@ def axis_structures(links: int) -> list[Axes]:
     """
     import networkx as nx
 
-    from powergraph.analyses.synthesis.canonical import incidence_graph, unique
+    from powergraph.analyses.synthesis.canonical import structure_code
 
-    found: list[Axes] = []
+    found: dict[str, Axes] = {}
     for tree in nx.nonisomorphic_trees(links):
-        found.extend(_coaxial_groupings(sorted(tree.edges())))
-    return unique(found, lambda axes: incidence_graph(links, axes))
+        for axes in _coaxial_groupings(sorted(tree.edges())):
+            found.setdefault(structure_code(links, axes), axes)
+    return list(found.values())
 
 
 def _coaxial_groupings(edges: list[tuple[int, int]]) -> Iterator[Axes]:
