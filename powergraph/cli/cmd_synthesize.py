@@ -2,7 +2,7 @@
 [--planets 3] [--mesh-efficiency 0.98] [--top K] [--json] [-o DIR]
 [--workers N | --scheduler dask://ADDRESS]``.
 
-Which trains give ratio R, with which teeth, ranked (docs/synthesis_ratio.md). Prints the
+Which trains give ratio R, with which teeth, ranked (docs/synthesis.md). Prints the
 ``compare`` table of the best K; ``-o DIR`` also writes each one's model (``NN_name.yaml``)
 and power-flow diagram (``NN_name.png``).
 """

@@ -108,7 +108,7 @@ def save_figure(figure, target: str | Path, **savefig: Any) -> None:
 
 
 def add_cluster_arguments(parser: Any) -> None:
-    """``--workers N | --scheduler dask://ADDRESS`` (docs/synthesis_ratio.md, docs/sweep.md)."""
+    """``--workers N | --scheduler dask://ADDRESS`` (docs/synthesis.md, docs/sweep.md)."""
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--workers", metavar="N",
                        help="run on a local Dask cluster of N worker processes")

@@ -7,7 +7,7 @@ among the coaxial links is searched at once over the layout's integer grid
 (:mod:`~powergraph.analyses.synthesis.synthesize_search`); the feasible tooth sets are
 evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). The work is
 mapped over chunks with :func:`powergraph.analyses.parallel.map_chunks` (in process, on
-local worker processes, or on a Dask cluster). docs/synthesis_ratio.md.
+local worker processes, or on a Dask cluster). docs/synthesis.md.
 
 Examples
 --------

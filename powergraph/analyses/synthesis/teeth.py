@@ -3,7 +3,7 @@
 A :class:`~powergraph.analyses.synthesis.graph.TrainGraph` says which links mesh; it does
 not say which coaxial gear is a sun and which a ring, nor which planet gears are one gear.
 A **layout** decides that, and leaves integer grids of tooth numbers that satisfy, by
-construction or by a vectorised filter (docs/synthesis_ratio.md):
+construction or by a vectorised filter (docs/synthesis.md):
 
 - **coaxiality** — every mesh of a planet link with a coaxial gear has the same centre
   distance (equal module on one carrier): ``z_sun + z_p = z_ring - z_p'`` in half-modules;
