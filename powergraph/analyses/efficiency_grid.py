@@ -40,8 +40,8 @@ from powergraph.kinematics import element_stencil, elements_of, solve_speeds
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.statics import solve
-from powergraph.statics.bearings import SPEED_NOISE
-from powergraph.statics.directions import FORCE_NOISE, relative_speeds
+from powergraph.statics.bearings import bearing_torque, relative_speed
+from powergraph.statics.directions import driver_codes, own_scales, relative_speeds
 from powergraph.statics.equilibrium import loads_of
 from powergraph.statics.friction import MAX_PASSES, friction_meshes
 
@@ -268,17 +268,13 @@ class _Grid:
         :func:`powergraph.statics.bearings.bearing_states`)."""
         torques = np.zeros((x.shape[0], len(self.row)))
         for spec in self.bearings:
-            w_1, w_2 = self.speeds[:, spec["rows"][0]], self.speeds[:, spec["rows"][1]]
-            rel = w_1 - w_2
-            rel = np.where(np.abs(rel) <= SPEED_NOISE * np.maximum(np.abs(w_1), np.abs(w_2)),
-                           0.0, rel)
+            rel = relative_speed(self.speeds[:, spec["rows"][0]], self.speeds[:, spec["rows"][1]])
             load = np.zeros(x.shape[0])
             for k, on_a_side, radius, count in spec["meshes"]:
                 stencil = element_stencil(self.elements[k].ratio, factors[:, k])
                 load += np.abs(stencil[0 if on_a_side else 1] * x[:, k]) / radius / count
-            m_1 = (spec["friction"].torque(load) if spec["friction"] is not None else 0.0) + \
-                (spec["drag"].torque(rel) if spec["drag"] is not None else 0.0)
-            torque = np.where(rel != 0.0, spec["count"] * m_1, 0.0) * np.sign(rel)
+            torque = bearing_torque(spec["count"], spec["friction"], spec["drag"], load,
+                                    rel)[2] * np.sign(rel)
             torques[:, spec["rows"][0]] -= torque
             torques[:, spec["rows"][1]] += torque
         return torques
@@ -320,20 +316,12 @@ class _Grid:
         external = -rhs.copy()
         for j, body in enumerate(self.unknown):
             external[:, self.row[body]] = x[:, n_el + j]
-        load = np.abs(external)
-        for k, el in enumerate(self.elements):
-            for body, c in zip(el.bodies, element_stencil(el.ratio, factors[:, k])):
-                load[:, self.row[body]] += np.abs(c * x[:, k])
-        frame = self.row[self.model.frame_body]
-        codes = np.zeros((x.shape[0], n_el), dtype=int)
-        rel = self.rel[mask]
-        for k, el in enumerate(self.elements):
-            own = [self.row[b] for b in el.bodies if self.row[b] != frame]
-            scale = np.max(load[:, own], axis=1) if own else np.max(load, axis=1)
-            lam, r = x[:, k], rel[:, k]
-            passes = (r != 0.0) & (np.abs(lam) > FORCE_NOISE * scale)
-            codes[:, k] = np.where(passes, np.sign(-lam * r), 0).astype(int)
-        return codes
+        bodies = np.array([[self.row[b] for b in el.bodies] for el in self.elements],
+                          dtype=np.int64).reshape(-1, 3)
+        ratios = np.array([el.ratio for el in self.elements], dtype=float)
+        scales = own_scales(bodies, ratios, x[:, :n_el].T, factors.T, np.abs(external).T,
+                            self.row[self.model.frame_body]).T
+        return driver_codes(x[:, :n_el], self.rel[mask], scales)
 
 
 def _bearing_specs(model: Model, row: dict, elements: tuple) -> list[dict]:

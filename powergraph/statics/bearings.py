@@ -46,6 +46,8 @@ A pair z 20/40 whose driven gear 2 has a seal drag of 0.5 N·m against the housi
 """
 from __future__ import annotations
 
+import numpy as np
+
 import dataclasses
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -124,16 +126,38 @@ def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
     return tuple(states)
 
 
+def relative_speed(w_1: Any, w_2: Any) -> Any:
+    """``w_1 - w_2``, zero where it is round-off on the scale of the two speeds (numbers or
+    arrays of operating points).
+
+    >>> relative_speed(3.0, 1.0), relative_speed(1.0, 1.0 + 1e-15)
+    (2.0, 0.0)
+    """
+    rel = np.asarray(w_1, dtype=float) - w_2
+    rel = np.where(np.abs(rel) <= SPEED_NOISE * np.maximum(np.abs(w_1), np.abs(w_2)), 0.0, rel)
+    return float(rel) if rel.ndim == 0 else rel
+
+
+def bearing_torque(count: int, friction: Any, drag: Any, load: Any, relative: Any) -> tuple:
+    """The law of one bearing or drag: per instance its friction torque ``μ·F·d/2`` at the
+    radial load and its drag torque at the relative speed, and the total torque of
+    ``count`` instances opposing the relative rotation (0 at rest). Numbers or arrays.
+
+    Returns
+    -------
+    (friction torque, drag torque, total torque), N·m
+    """
+    m_friction = friction.torque(load) if friction is not None else 0.0 * load
+    m_drag = drag.torque(relative) if drag is not None else 0.0 * relative
+    total = np.where(np.asarray(relative) != 0.0, count * (m_friction + m_drag), 0.0)
+    return m_friction, m_drag, (float(total) if total.ndim == 0 else total)
+
+
 def _state(model: Model, result: Any, kind: str, link: int | None, between: tuple[str, str],
            count: int, friction: Any, drag: Any, load: float, node: str) -> BearingState:
     bodies = (model.body_of[between[0]], model.body_of[between[1]])
-    w_1, w_2 = (result.kinematics.body_speeds[b] for b in bodies)
-    relative = w_1 - w_2
-    if abs(relative) <= SPEED_NOISE * max(abs(w_1), abs(w_2)):
-        relative = 0.0
-    m_friction = friction.torque(load) if friction is not None else 0.0
-    m_drag = drag.torque(relative) if drag is not None else 0.0
-    torque = count * (m_friction + m_drag) if relative != 0.0 else 0.0
+    relative = relative_speed(*(result.kinematics.body_speeds[b] for b in bodies))
+    m_friction, m_drag, torque = bearing_torque(count, friction, drag, load, relative)
     return BearingState(kind=kind, link=link, between=between, bodies=bodies, instances=count,
                         relative_speed=float(relative) + 0.0, radial_load=float(load),
                         friction_torque=float(m_friction), drag_torque=float(m_drag),

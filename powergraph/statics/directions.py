@@ -64,23 +64,65 @@ def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.
                 index[b] = len(index)
     bodies = body_columns(elements, index).astype(np.int64).reshape(-1, 3)
     outside = np.array([index.setdefault(b, len(index)) for b in external], dtype=np.int64)
-    ratio = np.array([e.ratio for e in elements], dtype=float)
-    stencil = element_stencil(ratio, np.asarray(factors, dtype=float))
     load = np.zeros(len(index))
     np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
-    for column, c in enumerate(stencil):
+    ratios = np.array([e.ratio for e in elements], dtype=float)
+    return own_scales(bodies, ratios, forces, np.asarray(factors, dtype=float), load,
+                      index.get(frame_body, -1))
+
+
+def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
+               factors: np.ndarray, load: np.ndarray, frame: int) -> np.ndarray:
+    """:func:`force_scales` on arrays, for one operating point or many at once.
+
+    Parameters
+    ----------
+    bodies : (E, 3) int array
+        Each element's gear a, gear b and carrier as body columns.
+    ratios : (E,) array
+    forces, factors : (E,) or (E, P) arrays
+        Element forces and factors (a column per operating point).
+    load : (B,) or (B, P) array
+        The magnitudes of the external torques on each body.
+    frame : int
+        The frame's body column (-1 if none).
+
+    Examples
+    --------
+    A pair on the frame (bodies 1, 2; frame 0) with ratio -2 and force 3: the torques on
+    gear a and gear b are 3 and 6, so its scale is 6.
+
+    >>> own_scales(np.array([[1, 2, 0]]), np.array([-2.0]), np.array([3.0]),
+    ...            np.array([1.0]), np.zeros(3), 0).tolist()
+    [6.0]
+    """
+    load = np.array(load, dtype=float)
+    for column, c in enumerate(element_stencil(ratios[:, None] if forces.ndim == 2 else ratios,
+                                               factors)):
         np.add.at(load, bodies[:, column], np.abs(c * forces))
-    frame = index.get(frame_body, -1)
-    own = np.where(bodies == frame, -np.inf, load[bodies]).max(axis=1, initial=-np.inf)
-    return np.where(np.isfinite(own), own, load.max(initial=0.0))
+    own = np.where((bodies == frame)[(...,) + (None,) * (forces.ndim - 1)], -np.inf,
+                   load[bodies])
+    own = own.max(axis=1, initial=-np.inf)
+    return np.where(np.isfinite(own), own, load.max(axis=0, initial=0.0))
+
+
+def driver_codes(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> np.ndarray:
+    """Who drives each element, as an array of the shape of ``forces``: the sign of the
+    power gear a feeds in, ``-λ (w_a - w_c)``; 0 where the relative speed is zero or the
+    force is round-off on its own scale.
+
+    >>> driver_codes(np.array([-1.0, 1e-13]), np.array([2.0, 2.0]), np.array([1.0, 1.0]))
+    array([1, 0])
+    """
+    forces, rel = np.asarray(forces), np.asarray(rel)
+    code = np.sign(-forces * rel).astype(int)
+    code[(rel == 0.0) | (np.abs(forces) <= FORCE_NOISE * np.asarray(scales))] = 0
+    return code
 
 
 def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Pattern:
-    """Who drives each element: the sign of the power gear a feeds in, ``-λ (w_a - w_c)``;
-    0 where the relative speed is zero or the force is round-off on its own scale."""
-    code = np.sign(-np.asarray(forces) * rel).astype(int)
-    code[(np.asarray(rel) == 0.0) | (np.abs(forces) <= FORCE_NOISE * np.asarray(scales))] = 0
-    return tuple(code.tolist())
+    """Who drives each element (:func:`driver_codes`), as a pattern."""
+    return tuple(driver_codes(forces, rel, scales).tolist())
 
 
 def factors_of(pattern: Pattern, elements: tuple[Element, ...]) -> np.ndarray:
