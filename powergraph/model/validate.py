@@ -10,7 +10,6 @@ Everything here is linear in the size of the model. The format: docs/format.md.
 from __future__ import annotations
 
 import dataclasses
-import math
 from types import MappingProxyType
 from typing import Any, Mapping
 
