@@ -102,7 +102,8 @@ def main(argv: list[str] | None = None) -> int:
     per_candidate, per_solve = naive(searched, args.loop)
     out = {"ratio": args.ratio, "graphs": len(graphs), "grid_points": alone.evaluated,
            "candidates": total, "feasible_tooth_sets": alone.feasible,
-           "arrangements": alone.arrangements, "synthesis_s": round(synthesis_s, 2), "synthesis_cold_s": cold_s,
+           "arrangements": alone.arrangements, "synthesis_s": round(synthesis_s, 2),
+           "synthesis_cold_s": cold_s,
            "synthesis_per_s": round(total / synthesis_s),
            "naive_per_s": round(1 / per_candidate, 1),
            "solve_only_per_s": round(1 / per_solve, 1),
