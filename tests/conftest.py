@@ -18,7 +18,7 @@ SLOW_TESTS = Path(__file__).resolve().parent / "slow_tests.txt"
 
 
 def pytest_collection_modifyitems(config, items) -> None:
-    """Mark `slow` the tests listed in tests/slow_tests.txt (measured, 0.15 s or more),
+    """Mark `slow` the tests listed in tests/slow_tests.txt (measured, about 0.12 s or more),
     beside those marked in their modules."""
     listed = {line.strip() for line in SLOW_TESTS.read_text(encoding="utf-8").splitlines()
               if line.strip() and not line.startswith("#")}
