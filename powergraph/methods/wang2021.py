@@ -52,6 +52,7 @@ from powergraph.methods.wang2021_equations import PaperEquations
 from powergraph.methods.wang2021_report import result_to_dict, split_flows, text_report
 from powergraph.model.spec import Model
 from powergraph.statics.flow import Flow
+from powergraph.statics.friction import loss_block_places
 from powergraph.statics.result import PowerFlowResult
 
 
@@ -367,6 +368,11 @@ def solve_wang2021(model: Model, realise_flows: bool = True) -> Wang2021Result:
     """
     from powergraph.statics import solve
 
+    places = loss_block_places(model)
+    if places:
+        raise MethodNotApplicableError("the paper's method takes each mesh's constant basic "
+                                       "efficiency; this block derives it from friction "
+                                       "(use the virtual-power method)", places[0])
     roles = find_rv_roles(model)
     kin = solve_speeds(model)
     eq = paper_equations(model, roles, kin)

@@ -119,6 +119,24 @@ def _torque_change(old: Mapping[str, float], new: Mapping[str, float], result: A
     return moved / scale
 
 
+def loss_block_places(model: Model) -> list[str]:
+    """Where ``model`` has losses that are not a constant efficiency: a mesh's ``friction:``
+    or ``pins:``, a bearing's ``friction:``/``drag:``, a component's ``drag:``, as YAML
+    paths, in file order of links then components. Methods that read plain efficiencies
+    refuse such a model rather than let these losses vanish.
+
+    >>> from powergraph.model import load_model
+    >>> loss_block_places(load_model("models/rv40e_friction.yaml"))[:2]
+    ['links[0].friction', 'links[1].pins']
+    """
+    places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"
+              for link in model.links for key, block in link.blocks.items()
+              if key in ("friction", "drag")]
+    places += [f"components.{c.raw_id}.drag" for c in model.components.values()
+               if c.drag is not None]
+    return places
+
+
 def needs_friction(model: Model) -> bool:
     """True when a mesh or bearing of ``model`` carries a ``friction:`` block, or a
     bearing or component a ``drag:`` block."""

@@ -338,3 +338,18 @@ def test_cycloid_mesh_with_the_wrong_carrier_is_refused() -> None:
     data["links"][1]["carrier"] = 7      # cycloid mesh on the planet frame, not the crank
     with pytest.raises(MethodNotApplicableError, match="not the planet/crank body"):
         solve_wang2021(pg.model_from_dict(data))
+
+
+def test_friction_derived_efficiencies_are_refused_not_read_as_one(capsys) -> None:
+    """The paper's method reads each mesh's constant basic efficiency; a mesh whose
+    efficiency comes from friction has none, so the method refuses the model, naming the
+    first such block, instead of treating that mesh as ideal."""
+    from powergraph.cli.main import main
+
+    friction_rv = ROOT / "models" / "rv40e_friction.yaml"
+    with pytest.raises(MethodNotApplicableError) as caught:
+        solve_wang2021(pg.load_model(friction_rv))
+    assert caught.value.path == "links[0].friction"
+    assert main(["solve", str(friction_rv), "--method", "wang2021"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "links[0].friction" in err

@@ -28,6 +28,7 @@ from powergraph.errors import ModelError, UsageError
 from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
 from powergraph.statics.equilibrium import loads_of, solve_equilibrium
+from powergraph.statics.friction import loss_block_places
 
 #: Variants evaluated at once: small enough to keep the work arrays in cache (measured
 #: fastest on the RV benchmark among 8k, 12k, 16k, 24k, 32k and 64k).
@@ -391,11 +392,7 @@ def refuse_loss_blocks(model: Model, what: str) -> None:
     ...
     powergraph.errors.ModelError: links[0].friction: the compiled sweep takes constant ...
     """
-    places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"
-              for link in model.links for key, block in link.blocks.items()
-              if key in ("friction", "drag")]
-    places += [f"components.{c.raw_id}.drag" for c in model.components.values()
-               if c.drag is not None]
+    places = loss_block_places(model)
     if places:
         raise ModelError(f"{what} takes constant efficiencies; replace this block by an "
                          f"efficiency, or use powergraph solve / map", places[0])
