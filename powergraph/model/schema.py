@@ -24,104 +24,15 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import fields
 from typing import Any
 
-from powergraph.model.block_geometry import NON_NEGATIVE, SHAPES
-
-#: Largest magnitudes accepted, so that products of model numbers stay finite.
-MAX_SPEED = 1e6        # rad/s (about 10^7 rpm)
-MAX_POWER = 1e12       # W
-MAX_TORQUE = 1e12      # N·m
-MAX_LENGTH = 1e6       # mm
-MAX_TEETH = 100_000
-MAX_COUNT = 10_000
-MIN_RATIO, MAX_RATIO = 1e-6, 1e6
-LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
-_UNIT_TEXT = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
-_SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm"}
-
-
-def _ref(name: str, **annotations: Any) -> dict:
-    return {"$ref": f"#/$defs/{name}", **annotations}
-
-
-def _number(title: str, description: str, **bounds: Any) -> dict:
-    return {"type": "number", "title": title, "description": description, **bounds}
-
-
-def _integer(title: str, description: str, minimum: int, maximum: int, **extra: Any) -> dict:
-    return {"type": "integer", "title": title, "description": description,
-            "minimum": minimum, "maximum": maximum, **extra}
-
-
-def _quantity(kind: str, title: str, description: str, **bounds: Any) -> dict:
-    """A number in SI units (mm for a length) or a string with units (``"1500 rpm"``)."""
-    unit = _SI[kind]
-    return {"title": title,
-            "description": f"{description} A number in {unit}, or a string with units.",
-            "x-quantity": kind,
-            "anyOf": [{"type": "number", **bounds},
-                      {"type": "string", "pattern": _UNIT_TEXT,
-                       "description": f"a number and a {kind} unit"}],
-            **({"examples": _EXAMPLES[kind]} if kind in _EXAMPLES else {})}
-
-
-_EXAMPLES = {"speed": ["1500 rpm", 157.08], "power": ["2.27 kW", 1000],
-             "torque": ["120 N*m", 12.5], "length": ["12 mm", 1.5]}
-
-
-def _text(title: str, description: str) -> dict:
-    return {"type": ["string", "number", "null"], "title": title,
-            "description": description}
-
-
-def _length(title: str, description: str, non_negative: bool = False) -> dict:
-    low = {"minimum": 0} if non_negative else {"exclusiveMinimum": 0}
-    return _quantity("length", title, description, maximum=MAX_LENGTH, **low)
-
-
-def _geometry_shape(cls: type) -> dict:
-    """Schema of one geometry shape, from its dataclass fields' metadata."""
-    properties: dict[str, Any] = {"shape": {"const": cls.shape, "title": "shape",
-                                            "description": cls.__doc__.splitlines()[0]}}
-    for spec in fields(cls):
-        meta = spec.metadata
-        symbol = f" (paper symbol {meta['symbol']})" if meta["symbol"] else ""
-        text = f"{meta['doc'][0].upper()}{meta['doc'][1:]}{symbol}."
-        if meta["kind"] == "length":
-            properties[spec.name] = _length(spec.name, text, meta["min"] == NON_NEGATIVE)
-        elif meta["kind"] == "count":
-            properties[spec.name] = _integer(spec.name, text, meta["min"], 1000)
-        else:
-            properties[spec.name] = _ref("componentId", title=spec.name, description=text)
-    names = [f.name for f in fields(cls)]
-    gear = cls.shape == "gear"
-    return {"type": "object", "title": f"geometry of shape {cls.shape}",
-            "description": (cls.__doc__.splitlines()[0]
-                            + (" `shape` may be left out on a component with teeth."
-                               if gear else "")),
-            "properties": properties, "additionalProperties": False,
-            "required": names if gear else ["shape", *names]}
-
-
-def _link(kind: str, description: str, extra: dict) -> dict:
-    properties = {
-        "type": {"const": kind, "title": "link type", "description": description},
-        "between": {"type": "array", "title": "between",
-                    "description": "The two components the link joins.",
-                    "items": _ref("componentId"), "minItems": 2, "maxItems": 2,
-                    "x-expect": "a list of two component ids"},
-        **extra,
-        "name": _text("name", "A label for reports."),
-        "note": _text("note", "Free text, ignored by the analyses."),
-    }
-    return {"type": "object", "title": f"{kind} link", "description": description,
-            "properties": properties, "additionalProperties": False,
-            "required": ["type", "between"]}
-
-
-_EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
+from powergraph.model.block_geometry import SHAPES
+from powergraph.model.schema_losses import (_BEARING_FRICTION, _CRANK_BEARING, _DRAG,
+                                            _FRICTION, _MESH_GEOMETRY, _OUTPUT_PINS, _PINS)
+from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_SPEED,
+                                           MAX_TEETH, MAX_TORQUE, MIN_RATIO, _EFFICIENCY,
+                                           _geometry_shape, _integer, _length, _link,
+                                           _number, _quantity, _ref, _text)
 
 _MESH = {
     "carrier": _ref("componentId", title="carrier",
@@ -149,133 +60,6 @@ _MESH = {
     "pins": _ref("pins"),
     "output_pins": _ref("outputPins"),
     "crank_bearing": _ref("crankBearing"),
-}
-
-_FRICTION = {
-    "title": "mesh friction",
-    "description": "The friction law that sets the mesh's basic efficiency 1 - mu*H_V, with "
-                   "H_V from the mesh's geometry (docs/losses.md). Replaces efficiency.",
-    "oneOf": [
-        {"type": "object", "title": "constant coefficient",
-         "description": "A constant mean coefficient of friction.",
-         "properties": {"model": {"const": "constant", "default": "constant",
-                                  "title": "model",
-                                  "description": "constant (the default): a given mu."},
-                        "mu": {"type": "number", "minimum": 0, "exclusiveMaximum": 1,
-                               "title": "mu", "description": "Mean coefficient of friction "
-                                                             "in the mesh, in [0, 1)."}},
-         "additionalProperties": False, "required": ["mu"]},
-        {"type": "object", "title": "ISO/TR 14179-2",
-         "description": "Mean coefficient from the tooth load and speed (Schlenk's fit); "
-                        "needs geometry.face_width.",
-         "properties": {
-             "model": {"const": "iso14179", "title": "model",
-                       "description": "iso14179: the coefficient of ISO/TR 14179-2."},
-             "viscosity": {"title": "viscosity",
-                           "description": "Dynamic viscosity of the oil at its working "
-                                          "temperature: mPa*s, or a string with units.",
-                           "anyOf": [{"type": "number", "exclusiveMinimum": 0,
-                                      "maximum": 1e6},
-                                     {"type": "string", "pattern": _UNIT_TEXT}]},
-             "roughness": {"title": "roughness",
-                           "description": "Mean arithmetic roughness Ra of the flanks: "
-                                          "micrometres, or a string with units.",
-                           "anyOf": [{"type": "number", "exclusiveMinimum": 0,
-                                      "maximum": 1000},
-                                     {"type": "string", "pattern": _UNIT_TEXT}]},
-             "lubricant_factor": {"type": "number", "exclusiveMinimum": 0, "maximum": 10,
-                                  "default": 1, "title": "lubricant_factor",
-                                  "description": "X_L: 1 for mineral oil."}},
-         "additionalProperties": False, "required": ["model", "viscosity", "roughness"]},
-    ],
-}
-
-_MU = {"type": "number", "minimum": 0, "exclusiveMaximum": 1, "title": "mu"}
-_ROLLING = {"type": "boolean", "default": False, "title": "rolling"}
-
-_PINS = {
-    "type": "object", "title": "cycloid pins",
-    "description": "Friction at the pin ring of a cycloid mesh (disc of z_c lobes, internal "
-                   "ring of z_c + 1 pins): sets the mesh's basic efficiency from the "
-                   "equal-load pin forces (docs/losses.md). Replaces efficiency. radius, "
-                   "circle_radius and eccentricity may come from the mesh's cycloid block or "
-                   "the disc's cycloid_disc geometry instead.",
-    "properties": {
-        "mu": {**_MU, "description": "Friction coefficient: at the contact with the disc "
-                                     "(fixed pins) or at the pin's seat (rolling pins)."},
-        "rolling": {**_ROLLING, "description": "true: the pins roll on the disc and turn in "
-                                               "their seats (or on needle bearings)."},
-        "radius": _length("radius", "Pin radius r_p."),
-        "circle_radius": _length("circle_radius", "Radius R_p of the pin-centre circle."),
-        "eccentricity": _length("eccentricity", "Crank eccentricity e."),
-        "seat_radius": _length("seat_radius", "Rolling pins: radius on which the friction "
-                                              "acts (default: the pin radius)."),
-    },
-    "additionalProperties": False,
-    "required": ["mu"],
-}
-
-_OUTPUT_PINS = {
-    "type": "object", "title": "output pins",
-    "description": "A W output mechanism of a cycloid mesh with a pins block: pins in holes "
-                   "(pin radius + e) of the disc; its friction is folded into the mesh's "
-                   "efficiency (docs/losses.md).",
-    "properties": {
-        "count": _integer("count", "Number of output pins.", 2, 1000),
-        "circle_radius": _length("circle_radius", "Radius R_w of the output pins' circle."),
-        "mu": {**_MU, "description": "Friction coefficient of a pin in its hole (or of a "
-                                     "rolling sleeve on its pin)."},
-        "rolling": {**_ROLLING, "description": "true: rolling sleeves (needs radius and "
-                                               "seat_radius)."},
-        "radius": _length("radius", "Outer radius of a rolling sleeve."),
-        "seat_radius": _length("seat_radius", "Radius on which a rolling sleeve turns."),
-    },
-    "additionalProperties": False,
-    "required": ["count", "circle_radius", "mu"],
-}
-
-_CRANK_BEARING = {
-    "type": "object", "title": "crank bearing",
-    "description": "The disc's bearing on its eccentric, for a cycloid mesh with a pins "
-                   "block; its friction is folded into the mesh's efficiency "
-                   "(docs/losses.md).",
-    "properties": {
-        "mu": {**_MU, "description": "Bearing friction coefficient referred to the bore "
-                                     "(e.g. about 0.002 for needle roller bearings)."},
-        "bore_radius": _length("bore_radius", "Bore radius of the bearing (friction "
-                                              "radius)."),
-        "crank_circle_radius": {**_length("crank_circle_radius",
-                                          "0 for one central crank; else the radius of the "
-                                          "circle of the cranks that carry the disc (an RV "
-                                          "reducer).", non_negative=True), "default": 0},
-    },
-    "additionalProperties": False,
-    "required": ["mu", "bore_radius"],
-}
-
-_MESH_GEOMETRY = {
-    "type": "object", "title": "mesh geometry",
-    "description": "Involute geometry of the pair, used by its friction block "
-                   "(docs/losses.md). The pinion is the external gear of an internal pair, "
-                   "the link's first gear otherwise.",
-    "properties": {
-        "module": _length("module", "Normal module."),
-        "face_width": _length("face_width", "Face width (needed by friction model "
-                                            "iso14179)."),
-        "pressure_angle": {"type": "number", "exclusiveMinimum": 0, "maximum": 45,
-                           "default": 20, "title": "pressure_angle",
-                           "description": "Normal pressure angle, degrees."},
-        "helix_angle": {"type": "number", "minimum": -60, "maximum": 60, "default": 0,
-                        "title": "helix_angle", "description": "Helix angle, degrees."},
-        "shifts": {"type": "array", "items": {"type": "number", "minimum": -2, "maximum": 2},
-                   "minItems": 2, "maxItems": 2, "default": [0, 0], "title": "shifts",
-                   "description": "Profile shift coefficients (pinion, wheel).",
-                   "x-expect": "a list of two numbers (pinion, wheel)"},
-        "addendum": {"type": "number", "exclusiveMinimum": 0, "maximum": 2, "default": 1,
-                     "title": "addendum", "description": "Addendum coefficient h_a*."},
-    },
-    "additionalProperties": False,
-    "required": ["module"],
 }
 
 _TOLERANCES = {
@@ -372,31 +156,6 @@ _COMPONENT = {
         "note": _text("note", "Free text, ignored by the analyses."),
     },
     "additionalProperties": False,
-}
-
-_TORQUE_0 = {"minimum": 0, "maximum": MAX_TORQUE}
-_DRAG = {
-    "type": "object", "title": "no-load drag",
-    "description": "Load-independent drag torque per instance, opposing the relative "
-                   "rotation: no_load_torque, or a + b*|n| with n the relative speed in rpm "
-                   "(docs/losses.md).",
-    "properties": {
-        "no_load_torque": _quantity("torque", "no_load_torque", "Constant drag torque.",
-                                    **_TORQUE_0),
-        "a": _quantity("torque", "a", "Constant part of the drag. Default 0.", **_TORQUE_0),
-        "b": _quantity("torque", "b", "Drag per rpm of relative speed. Default 0.",
-                       **_TORQUE_0)},
-    "additionalProperties": False, "minProperties": 1,
-}
-_BEARING_FRICTION = {
-    "type": "object", "title": "bearing friction",
-    "description": "Load-dependent friction torque M = mu*F*bore/2 per bearing, F the "
-                   "radial load from the carried member's tooth forces (docs/losses.md).",
-    "properties": {
-        "mu": {"type": "number", "minimum": 0, "maximum": 1, "title": "mu",
-               "description": "Constant friction coefficient of the bearing, in [0, 1]."},
-        "bore": _length("bore", "Bore diameter of the bearing.", True)},
-    "additionalProperties": False, "required": ["mu", "bore"],
 }
 
 _PORT = {
