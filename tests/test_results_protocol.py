@@ -147,6 +147,19 @@ def _cycloid_loss():
                              OutputPins(8, 40.0, 0.05), CrankBearing(0.002, 20.0))
 
 
+def _enumeration():
+    from powergraph.analyses.synthesis import enumerate_trains
+
+    return enumerate_trains(4)
+
+
+def _synthesis():
+    from powergraph.analyses.synthesis import synthesize
+    from powergraph.analyses.synthesis.synthesize_classics import classic_graphs
+
+    return synthesize(4.0, graphs=classic_graphs(4), top=3)
+
+
 RESULTS = [
     ("PowerFlowResult", _power_flow, True),
     ("Wang2021Result", _wang2021, True),
@@ -167,6 +180,8 @@ RESULTS = [
     ("EfficiencyMap", _efficiency_map, True),
     ("MeshLoss", _mesh_loss, False),
     ("CycloidLoss", _cycloid_loss, False),
+    ("EnumerationResult", _enumeration, True),
+    ("SynthesisResult", _synthesis, True),
 ]
 
 

@@ -26,7 +26,7 @@ from typing import Any, Iterable, Sequence
 from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank_key, signature
-from powergraph.analyses.synthesis.synthesize_classics import CLASSICS, classic_graphs
+from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts, search_range
 from powergraph.errors import UsageError
 from powergraph.result import aligned_table
@@ -120,14 +120,11 @@ class SynthesisResult:
 
 
 def default_graphs(max_links: int = 6) -> tuple[TrainGraph, ...]:
-    """The enumeration's 1-DOF graphs with 3 to ``max_links`` links when it is available
-    (those isomorphic to a classic train named after it, e.g. ``Wolfrom 3K (5-link
-    d-graph 1)``; plus the coupled K-H-V and RV trains, which it does not produce), else
-    the classics."""
-    try:
-        from powergraph.analyses.synthesis import enumerate_trains  # type: ignore[attr-defined]
-    except ImportError:
-        return classic_graphs(max_links)
+    """The enumeration's 1-DOF graphs with 3 to ``max_links`` links (those isomorphic to a
+    classic train named after it, e.g. ``Wolfrom 3K (5-link d-graph 1)``), plus the coupled
+    K-H-V and RV trains, which it does not produce."""
+    from powergraph.analyses.synthesis.enumerate import enumerate_trains
+
     graphs = []
     for n in range(3, max_links + 1):
         found = enumerate_trains(links=n, dof=1)
