@@ -6,8 +6,10 @@ Vertices are the train's links (rigid members, the frame among them). Two kinds 
   the axis labelled ``axis`` (an integer; two turning pairs with the same label share the
   geometric axis, which is what "level" means in the literature);
 - a **gear pair** ``(u, v, carrier)``: ``u`` and ``v`` mesh, and ``carrier`` (the transfer
-  vertex) is the link on which both of their axes are held, so the turning pairs
-  ``u-carrier`` and ``v-carrier`` exist and lie on different axes.
+  vertex) is the link on which both of their axes are held: ``u`` turns about one axis
+  of the carrier and ``v`` about another (directly on the carrier, or through other links
+  on the same axis, since the turning pairs of one axis may be arranged in several ways;
+  see docs/synthesis.md).
 
 The turning pairs form a spanning tree of the links, so a train of ``N`` links has
 ``N - 1`` of them, and planar mobility gives ``dof = N - 1 - G`` for ``G`` gear pairs.
