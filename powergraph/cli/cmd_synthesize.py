@@ -9,11 +9,11 @@ and power-flow diagram (``NN_name.png``).
 from __future__ import annotations
 
 import argparse
-import math
 import re
 from pathlib import Path
 
-from powergraph.cli.common import add_cluster_arguments, cluster_options, print_json
+from powergraph.cli.common import (add_cluster_arguments, cluster_options, number_option,
+                                   print_json, whole_option)
 from powergraph.errors import UsageError
 
 
@@ -47,31 +47,14 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.set_defaults(handler=run)
 
 
-def _number(text: str, option: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise UsageError(f"{option} {text}: not a number") from None
-    if not math.isfinite(value):
-        raise UsageError(f"{option} {text}: must be finite")
-    return value
-
-
-def _whole(text: str, option: str, low: int, high: int) -> int:
-    value = _number(text, option)
-    if not value.is_integer() or not low <= value <= high:
-        raise UsageError(f"{option} {text}: must be a whole number from {low} to {high}")
-    return int(value)
-
-
 def parse_tolerance(text: str) -> float:
     """``0.5%`` -> 0.005; ``0.005`` -> 0.005.
 
     >>> parse_tolerance("0.5%"), parse_tolerance("0.01")
     (0.005, 0.01)
     """
-    value = (_number(text[:-1], "--tolerance") / 100 if text.endswith("%")
-             else _number(text, "--tolerance"))
+    value = (number_option(text[:-1], "--tolerance") / 100 if text.endswith("%")
+             else number_option(text, "--tolerance"))
     if not 0 < value < 1:
         raise UsageError(f"--tolerance {text}: must be above 0 and below 100%")
     return value
@@ -93,18 +76,18 @@ def parse_teeth(text: str) -> tuple[int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    ratio = _number(args.ratio, "--ratio")
+    ratio = number_option(args.ratio, "--ratio")
     if ratio == 0:
         raise UsageError("--ratio 0: a ratio cannot be zero")
-    efficiency = _number(args.mesh_efficiency, "--mesh-efficiency")
+    efficiency = number_option(args.mesh_efficiency, "--mesh-efficiency")
     if not 0 < efficiency <= 1:
         raise UsageError(f"--mesh-efficiency {args.mesh_efficiency}: must be in (0, 1]")
     options = dict(
         tolerance=parse_tolerance(args.tolerance),
-        max_links=_whole(args.max_links, "--max-links", 3, 8),
-        teeth=parse_teeth(args.teeth), planets=_whole(args.planets, "--planets", 1, 64),
-        mesh_efficiency=efficiency, top=_whole(args.top, "--top", 1, 1000),
-        max_grid=_whole(args.max_grid, "--max-grid", 1, 10**12),
+        max_links=whole_option(args.max_links, "--max-links", 3, 8),
+        teeth=parse_teeth(args.teeth), planets=whole_option(args.planets, "--planets", 1, 64),
+        mesh_efficiency=efficiency, top=whole_option(args.top, "--top", 1, 1000),
+        max_grid=whole_option(args.max_grid, "--max-grid", 1, 10**12),
         **cluster_options(args))
     target = _output_dir(args.output) if args.output else None
     from powergraph.analyses.synthesis.synthesize import synthesize

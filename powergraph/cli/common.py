@@ -119,19 +119,37 @@ def add_cluster_arguments(parser: Any) -> None:
 def cluster_options(args: Any) -> dict[str, Any]:
     """``{"workers": N or None, "scheduler": address or None}`` from the parsed options;
     a bad number or address is a :class:`~powergraph.errors.UsageError` (exit 2)."""
-    from powergraph.errors import UsageError
-
-    workers = None
-    if args.workers is not None:
-        try:
-            value = float(args.workers)
-        except ValueError:
-            value = float("nan")
-        if not (value.is_integer() and 1 <= value <= 1024):
-            raise UsageError(f"--workers {args.workers}: must be a whole number from 1 to 1024")
-        workers = int(value)
+    workers = None if args.workers is None else whole_option(args.workers, "--workers", 1, 1024)
     if args.scheduler:
         from powergraph.analyses.parallel import scheduler_address
 
         scheduler_address(args.scheduler)   # a bad address fails before any work
     return {"workers": workers, "scheduler": args.scheduler}
+
+
+def number_option(text: str, option: str) -> float:
+    """A finite number given to ``option``; otherwise a
+    :class:`~powergraph.errors.UsageError` naming the option (exit 2).
+
+    >>> number_option("2.5", "--ratio")
+    2.5
+    """
+    try:
+        value = float(text)
+    except ValueError:
+        raise UsageError(f"{option} {text}: not a number") from None
+    if not math.isfinite(value):
+        raise UsageError(f"{option} {text}: must be finite")
+    return value
+
+
+def whole_option(text: str, option: str, low: int, high: int) -> int:
+    """A whole number from ``low`` to ``high`` given to ``option`` (exit 2 otherwise).
+
+    >>> whole_option("4", "--workers", 1, 1024)
+    4
+    """
+    value = number_option(text, option)
+    if not value.is_integer() or not low <= value <= high:
+        raise UsageError(f"{option} {text}: must be a whole number from {low} to {high}")
+    return int(value)
