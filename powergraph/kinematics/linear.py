@@ -9,10 +9,12 @@ tests that check both agree.
 **Scaling.** A long train's unknowns span many decades (speeds of 20 planetary stages in
 series differ by 5^20, torques of a chain at efficiency 1e-6 per mesh by 1e-6 per gear),
 while each row only relates neighbours. :func:`solve_square` therefore solves, then
-re-solves twice with every column scaled by the magnitude of its unknown and every row by
-its largest scaled entry (equilibration), so each unknown comes out accurate relative to
-itself. Whether the system is regular is decided on that scaled system (its condition
-number, estimated in linear time on the sparse path): diagonal scaling cannot hide a real
+re-solves with every column scaled by the magnitude of its unknown and every row by its
+largest scaled entry (equilibration) until those magnitudes settle, so each unknown comes
+out accurate relative to itself; a small dense system whose unknowns lie within
+``WELL_SCALED`` of each other is already accurate after the first solve and stops there.
+Whether the system is regular is decided on that scaled system (its condition number,
+estimated in linear time on the sparse path): diagonal scaling cannot hide a real
 singularity, since entrywise relative round-off is the same in every scaling.
 
 **Rank.** :func:`rank` takes the structural rank (a maximum matching of rows to columns,
