@@ -65,7 +65,10 @@ def sweep_on_cluster(model: Model, values: Mapping[str, Any], *, backend: str = 
     parts = [(key, model, tuple(flat), backend,
               {path: v[start:start + part_size] for path, v in flat.items()})
              for start in range(0, max(n, 1), part_size)]
-    results = map_chunks(_evaluate_part, parts, scheduler=scheduler, workers=workers)
+    try:
+        results = map_chunks(_evaluate_part, parts, scheduler=scheduler, workers=workers)
+    finally:
+        _COMPILED.pop(key, None)    # run here: keep no compiled model after the sweep
     return _joined(model.name, arrays, shape, results)
 
 
