@@ -15,6 +15,8 @@ True
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 
 class PowerGraphError(Exception):
     """Root of every error powergraph raises on purpose.
@@ -55,3 +57,42 @@ class MethodNotApplicableError(ModelError):
 
 class UsageError(PowerGraphError, ValueError):
     """Bad command-line or function arguments (not a model problem)."""
+
+
+@dataclass(frozen=True)
+class Caveat:
+    """A warning about a model or a result: the answer stands, but a designer should know.
+
+    Not an exception: models and results carry them in ``warnings`` (a tuple), the text
+    reports print them as ``warning: PATH: MESSAGE`` lines, ``--json`` lists them as
+    strings, and ``--strict`` turns them into errors (exit 2).
+
+    Parameters
+    ----------
+    message : str
+        What is doubtful, in the user's terms, with what to write instead when there is
+        something to write.
+    path : str, optional
+        The place in the model file (``ports[1]``, ``links[0]``), naming the port's or
+        link's name where it has one.
+    code : str
+        A short stable kind (``bare-speed``, ``role-reversed``, ``coaxiality``...) that
+        tests and scripts can filter on.
+
+    Examples
+    --------
+    >>> str(Caveat("read as 1500 rad/s; write '1500 rad/s' or '1500 rpm'",
+    ...            "ports[0].speed", "bare-speed"))
+    "ports[0].speed: read as 1500 rad/s; write '1500 rad/s' or '1500 rpm'"
+    """
+
+    message: str
+    path: str | None = None
+    code: str = "warning"
+
+    def __str__(self) -> str:
+        return f"{self.path}: {self.message}" if self.path else self.message
+
+    def to_error(self) -> "ModelError":
+        """The same text as a :class:`ModelError` (what ``--strict`` raises)."""
+        return ModelError(self.message, self.path)

@@ -107,6 +107,9 @@ class Model:
     description: str | None = None
     source: str | None = None
     tolerances: Any = None  # top-level ``tolerances:`` (powergraph.analyses.tolerance.spec)
+    #: Caveats found while reading the model (powergraph.errors.Caveat): a speed without a
+    #: unit, a planetary set that cannot be assembled... The model is still valid.
+    warnings: tuple = field(default=(), compare=False)
 
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
