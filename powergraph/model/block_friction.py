@@ -8,7 +8,7 @@ from typing import Any, Mapping
 
 from powergraph.gears.mesh_loss import MeshGeometry, iso14179_mu, mesh_loss
 from powergraph.errors import ModelError
-from powergraph.model.units import parse_quantity
+from powergraph.model.units import parse_in_unit, parse_quantity
 
 FRICTION_MODELS = ("constant", "iso14179")
 
@@ -108,16 +108,10 @@ def _roughness(value: Any, path: str) -> float:
 
 
 def _viscosity(value: Any, path: str) -> float:
-    """Dynamic viscosity in mPa·s: a number (mPa·s) or a string with units (pint)."""
+    """Dynamic viscosity in mPa·s: a number (mPa·s) or a string with units."""
     if not isinstance(value, str):
         return float(value)
-    try:
-        from powergraph.model.units import _registry
-
-        number = float(_registry().Quantity(value).to("mPa*s").magnitude)
-    except Exception:
-        raise ModelError(f"cannot read {value!r} as a dynamic viscosity (e.g. '30 mPa*s')",
-                         path) from None
+    number = parse_in_unit(value, "mPa*s", "dynamic viscosity", path)
     if not (math.isfinite(number) and 0 < number <= 1e6):
         raise ModelError(f"must be in (0, 1e6] mPa*s, got {value!r}", path)
     return number
