@@ -9,8 +9,10 @@
   component); anchors and aliases are allowed, but the nodes they add by expansion are
   counted and bounded (:data:`MAX_ALIAS_EXPANSION`), so a "billion laughs" file fails at
   once while a large plain file does not; nesting is bounded (:data:`MAX_DEPTH`).
+- Merge keys as in YAML 1.1: ``<<: *base`` (or a list, the earlier base winning) adds the
+  keys the mapping does not write itself; a key written twice is still an error.
 - Only plain data: strings, numbers, booleans, null, mappings and lists (a date stays text;
-  other tags are refused).
+  other tags, and values their tag cannot carry, are refused: :mod:`.yaml_tags`).
 
 The document is built directly from the parser's events with an explicit stack (libyaml's
 C parser when PyYAML has it), so loading is linear in the file size and never recurses.
@@ -38,21 +40,18 @@ import yaml
 from yaml import events as ev
 
 from powergraph.errors import ModelError
+from powergraph.model.yaml_tags import MAX_NUMBER_DIGITS, MERGE_KEY, TagProblem
+from powergraph.model.yaml_tags import check_collection_tag, tagged_scalar
 
 #: Most nodes that anchors and aliases may add to a document by expansion.
 MAX_ALIAS_EXPANSION = 100_000
 #: Deepest nesting of mappings and lists (a model needs about six levels).
 MAX_DEPTH = 100
-#: Longest number (in characters) read as a number: no model value needs more.
-MAX_NUMBER_DIGITS = 1000
 #: Default size limit of a model file, in bytes.
 DEFAULT_MAX_MODEL_BYTES = 10_000_000
 ENV_MAX_MODEL_BYTES = "POWERGRAPH_MAX_MODEL_BYTES"
 
 _Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_TAG = "tag:yaml.org,2002:"
-_MERGE = _TAG + "merge"
-_STR = _TAG + "str"
 _override: list[int] = []
 
 
@@ -215,6 +214,8 @@ class _Builder:
             raise ModelError(f"{self.source} is empty: a model needs name, components, links "
                              "and ports")
         root = self._node(get)
+        if root is MERGE_KEY:
+            root = "<<"
         get()  # DocumentEnd
         extra = get()
         if not isinstance(extra, ev.StreamEndEvent):
@@ -227,7 +228,8 @@ class _Builder:
                           path or self.source)
 
     def _node(self, get) -> Any:
-        # Frame: [container, path, anchor, size, pending key, key line, seen keys, is_map]
+        # Frame: [container, path, anchor, size, pending key, key line, seen keys, is_map,
+        #         merged keys (a dict, once the mapping has a merge key) or None]
         stack: list[list] = []
         scalar, add = self._scalar, self._add
         while True:
@@ -240,6 +242,8 @@ class _Builder:
             elif kind is ev.MappingEndEvent or kind is ev.SequenceEndEvent:
                 frame = stack.pop()
                 value, size = frame[0], frame[3]
+                if frame[8] is not None:  # explicit keys override the merged ones
+                    value = {**frame[8], **value}
                 if frame[2] is not None:
                     self.anchors[frame[2]] = (value, size)
                     self.open_anchors.discard(frame[2])
@@ -249,12 +253,15 @@ class _Builder:
                                       event)
                 is_map = kind is ev.MappingStartEvent
                 if event.tag is not None:
-                    self._check_tag(event, "map" if is_map else "seq", stack)
+                    try:
+                        check_collection_tag(event.tag, "map" if is_map else "seq")
+                    except TagProblem as exc:
+                        raise self._error(str(exc), event, self._child_path(stack)) from None
                 path = self._child_path(stack)
                 if event.anchor is not None:
                     self.open_anchors.add(event.anchor)
                 stack.append([{} if is_map else [], path, event.anchor, 1, _NO_KEY, 0, {},
-                              is_map])
+                              is_map, None])
                 continue
             elif kind is ev.AliasEvent:
                 value, size = self._alias(event)
@@ -274,6 +281,8 @@ class _Builder:
 
     def _add(self, frame: list, value: Any, size: int, event: Any) -> None:
         frame[3] += size
+        if value is MERGE_KEY and not (frame[7] and frame[4] is _NO_KEY):
+            value = "<<"  # a plain << anywhere but in key position is text
         if not frame[7]:
             frame[0].append(value)
             return
@@ -291,22 +300,22 @@ class _Builder:
             frame[4] = value
             return
         key, frame[4] = frame[4], _NO_KEY
-        if key == "<<":
-            self._merge(frame, key, value, event)
+        if key is MERGE_KEY:
+            self._merge(frame, value, event)
         else:
             frame[0][key] = value
 
-    def _merge(self, frame: list, key: Any, value: Any, event: Any) -> None:
-        """YAML merge key ``<<: *base``: the base's keys, unless given here."""
+    def _merge(self, frame: list, value: Any, event: Any) -> None:
+        """YAML merge key ``<<: *base`` (or a list of bases, the earlier winning): the
+        bases' keys go aside and the mapping's own keys override them when it closes."""
         bases = value if isinstance(value, list) else [value]
         if not all(isinstance(b, dict) for b in bases):
             raise self._error("'<<' must merge a mapping or a list of mappings", event,
-                              join_path(frame[1], key))
-        for base in bases:
-            for name, item in base.items():
-                if name not in frame[6]:
-                    frame[6][name] = event.start_mark.line
-                    frame[0][name] = item
+                              join_path(frame[1], "<<"))
+        merged: dict = {}
+        for base in reversed(bases):
+            merged.update(base)
+        frame[8] = merged
 
     def _alias(self, event: Any) -> tuple[Any, int]:
         name = event.anchor
@@ -320,11 +329,6 @@ class _Builder:
             raise ModelError(f"{self.source} expands to more than {MAX_ALIAS_EXPANSION} extra "
                              "nodes through anchors and aliases; refusing it")
         return value, size
-
-    def _check_tag(self, event: Any, kind: str, stack: list[list]) -> None:
-        if event.tag not in (None, "!", _TAG + kind):
-            raise self._error(f"unsupported YAML tag {event.tag}", event,
-                              self._child_path(stack))
 
     def _scalar(self, event: Any, stack: list[list]) -> Any:
         value, tag = event.value, event.tag
@@ -346,18 +350,10 @@ class _Builder:
 
     def _typed(self, tag: str, event: Any, stack: list[list]) -> Any:
         """The value of a scalar with tag ``tag`` (plain data only)."""
-        value = event.value
-        if tag == _STR or tag == _TAG + "timestamp":
-            return value
-        if tag == _MERGE:
-            return "<<"
-        if tag in _SCALARS:
-            if len(value) > MAX_NUMBER_DIGITS:
-                raise self._error(f"a number written with {len(value)} characters is out of "
-                                  "range", event, self._child_path(stack))
-            node = yaml.ScalarNode(tag, value, event.start_mark, event.end_mark)
-            return _SCALARS[tag](self.loader, node)
-        raise self._error(f"unsupported YAML tag {tag}", event, self._child_path(stack))
+        try:
+            return tagged_scalar(tag, event.value, self.loader)
+        except TagProblem as exc:
+            raise self._error(str(exc), event, self._child_path(stack)) from None
 
 
 _NO_KEY = object()
@@ -365,8 +361,6 @@ _NO_KEY = object()
 #: non-characters, lone surrogates, and a byte-order mark anywhere but at the start).
 _BAD_CHARACTER = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x84\x86-\x9f"
                             "\ufffe\uffff\ud800-\udfff]|(?!\\A)\ufeff")
-_SCALARS = {_TAG + name: yaml.SafeLoader.yaml_constructors[_TAG + name]
-            for name in ("null", "bool", "int", "float")}
 
 
 def read_model_bytes(path: str | Path) -> bytes:

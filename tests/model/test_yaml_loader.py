@@ -137,3 +137,119 @@ def test_the_library_loads_the_same_as_pyyaml() -> None:
 
     for path in sorted((ROOT / "models").glob("*.yaml")):
         assert load_yaml_file(path) == yaml.safe_load(path.read_text()), path.name
+
+
+# --- merge keys (YAML 1.1): PyYAML's safe_load implements them and is the reference ------
+
+MERGES = [
+    "g: &g {teeth: 20, internal: false}\np: {<<: *g, teeth: 30}\n",
+    "g: &g {teeth: 20}\np: {teeth: 30, <<: *g}\n",
+    "a: &a {x: 1, y: 1}\nb: &b {x: 2, z: 2}\nc: {<<: [*a, *b], w: 0}\n",
+    "a: &a {x: 1, y: 1}\nb: &b {<<: *a, x: 2, z: 2}\nc: {<<: *b, y: 3}\n",
+    "c: {<<: {x: 1}, y: 2}\n",
+    "a: &a {x: 1}\nb: &b {y: 2}\nc:\n  <<: [*a, *b]\n  x: 3\n",
+]
+
+
+@pytest.mark.parametrize("text", MERGES)
+def test_merge_keys_read_as_pyyaml_reads_them(text) -> None:
+    import yaml
+
+    expected = yaml.safe_load(text)
+    data = load_yaml_text(text)
+    assert data == expected
+    assert [list(v) for v in data.values()] == [list(v) for v in expected.values()]
+
+
+def test_explicit_keys_override_merged_ones_and_the_earlier_base_wins() -> None:
+    data = load_yaml_text("a: &a {x: 1, y: 1}\nb: &b {x: 2, z: 2}\n"
+                          "c: {<<: [*a, *b], y: 5}\n")
+    assert data["c"] == {"x": 1, "y": 5, "z": 2}
+
+
+@pytest.mark.parametrize("text, words, path", [
+    ("g: &g {t: 1}\np: {<<: *g, t: 2, t: 3}\n", "duplicate key 't'", "p.t"),
+    ("g: &g {t: 1}\np: {<<: *g, <<: *g}\n", "duplicate key '<<'", "p.<<"),
+    ("p: {<<: 5}\n", "'<<' must merge a mapping", "p.<<"),
+])
+def test_merge_errors(text, words, path) -> None:
+    error = error_of(text)
+    assert words in error.message and error.path == path
+
+
+def test_a_plain_double_angle_outside_key_position_is_text() -> None:
+    assert load_yaml_text("a: [<<, {v: <<}]\n") == {"a": ["<<", {"v": "<<"}]}
+
+
+def test_merges_do_not_escape_the_alias_bound() -> None:
+    lines = ["a: &a {" + ", ".join(f"k{i}: {i}" for i in range(10)) + "}"]
+    for prev, name in zip("abcdefgh", "bcdefghi"):
+        lines.append(f"{name}: &{name} {{<<: [{', '.join([f'*{prev}'] * 10)}]}}")
+    assert "anchors and aliases" in error_of("\n".join(lines)).message
+
+
+# --- explicit tags: read correctly, or refused in one line naming the place ------------
+
+TAG_VALUES = [("!!bool 'false'", False), ("!!bool yes", True), ("!!int '40'", 40),
+              ("!!int 0x28", 40), ("!!int 1_000", 1000), ("!!float '0.5'", 0.5),
+              ("!!float 1", 1.0), ("!!null ''", None), ("!!null ~", None), ("!!str 12", "12"),
+              ("!!timestamp 2001-12-14", "2001-12-14"), ("!!seq [1]", [1]),
+              ("!!map {b: 1}", {"b": 1}), ("! 12", 12)]
+
+
+@pytest.mark.parametrize("tagged, value", TAG_VALUES)
+def test_standard_tags_construct_their_values(tagged, value) -> None:
+    assert load_yaml_text(f"a: {tagged}\n") == {"a": value}
+
+
+BAD_TAGS = [("!!bool 'maybe'", "!!bool 'maybe' is not a boolean"),
+            ("!!bool ''", "is not a boolean"),
+            ("!!int 'abc'", "!!int 'abc' is not an integer"),
+            ("!!int '-'", "is not an integer"), ("!!int 0x", "is not an integer"),
+            ("!!int '1.5'", "is not an integer"),
+            ("!!float ''", "!!float '' is not a number"), ("!!float '.'", "is not a number"),
+            ("!!null 'x'", "is not null"),
+            ("!!timestamp 'soon'", "is not a date or time"),
+            ("!!binary aGVsbG8=", "unsupported YAML tag !!binary"),
+            ("!!set {x, y}", "unsupported YAML tag !!set"),
+            ("!!omap [{x: 1}]", "unsupported YAML tag !!omap"),
+            ("!!pairs [{x: 1}]", "unsupported YAML tag !!pairs"),
+            ("!!python/object:os.system x", "unsupported YAML tag !!python/object:os.system"),
+            ("!!python/tuple [1]", "unsupported YAML tag !!python/tuple"),
+            ("!foo x", "unsupported YAML tag !foo"), ("!foo {b: 1}", "unsupported YAML tag"),
+            ("!!map x", "!!map does not fit a scalar"),
+            ("!!seq {b: 1}", "!!seq does not fit a mapping"),
+            ("!!str [1]", "!!str does not fit a list"),
+            ("!!merge x", "is not the merge key")]
+
+
+@pytest.mark.parametrize("tagged, words", BAD_TAGS)
+def test_impossible_or_unsupported_tags_are_refused_with_line_and_path(tagged, words) -> None:
+    error = error_of(f"name: t\nx:\n  a: {tagged}\n")
+    assert words in error.message and "(line 3)" in error.message, error.message
+    assert error.path == "x.a" and "\n" not in str(error)
+
+
+TRAIN = """name: pair
+components:
+  0: {role: frame}
+  1: {teeth: 20}
+  2: {teeth: 40, internal: TAGGED}
+links: [{type: mesh, between: [1, 2]}]
+ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 2, role: output}]
+"""
+
+
+@pytest.mark.parametrize("tagged, words", [BAD_TAGS[0], BAD_TAGS[2], BAD_TAGS[6],
+                                           BAD_TAGS[8], BAD_TAGS[10], BAD_TAGS[16]])
+def test_the_cli_reports_a_bad_tag_on_one_line(tagged, words, tmp_path, capsys) -> None:
+    from powergraph.cli.main import main
+
+    path = tmp_path / "m.yaml"
+    path.write_text(TRAIN.replace("TAGGED", tagged))
+    status = main(["solve", str(path)])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == ""
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith("powergraph: error: components.2.internal: ") and words in err
+    assert "(line 5)" in err
