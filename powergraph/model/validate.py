@@ -13,10 +13,10 @@ import dataclasses
 from types import MappingProxyType
 from typing import Any, Mapping
 
-from powergraph.errors import ModelError
+from powergraph.errors import Caveat, ModelError
 from powergraph.model.conform import check_document, conform
 from powergraph.model.spec import Component, Link, Model, Port
-from powergraph.model.units import parse_quantity
+from powergraph.model.units import bare_speed_caveat, parse_quantity
 from powergraph.model.yaml_loader import brief, gc_paused
 
 _EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
@@ -64,13 +64,15 @@ def _model(data: Any, source: str | None) -> Model:
     frame = next(c.id for c in components.values() if c.is_frame)
     links = tuple(_link(raw, i, components, frame, default_eta)
                   for i, raw in enumerate(data["links"]))
-    ports = _ports(data["ports"], components)
+    caveats: list[Caveat] = []  # other checks append theirs
+    ports = _ports(data["ports"], components, caveats)
     from powergraph.model.graph import bodies_of, check_topology
 
     bodies, body_of = bodies_of(components, links)
     model = Model(name=_text(data["name"]), description=_text(data.get("description")),
                   components=MappingProxyType(components), links=links, ports=ports,
-                  bodies=bodies, body_of=MappingProxyType(body_of), source=source)
+                  bodies=bodies, body_of=MappingProxyType(body_of), source=source,
+                  warnings=tuple(caveats))
     check_topology(model)
     if model.has_bearing_losses:
         from powergraph.model.block_bearing import check_bearing_loads
@@ -182,7 +184,8 @@ def _mesh_fields(raw: Mapping, path: str, pair: tuple[str, str],
             "efficiency": eta, "blocks": MappingProxyType(blocks)}
 
 
-def _ports(raw: list, components: Mapping[str, Component]) -> tuple[Port, ...]:
+def _ports(raw: list, components: Mapping[str, Component],
+           caveats: list[Caveat]) -> tuple[Port, ...]:
     ports = []
     seen: dict[str, int] = {}
     for index, item in enumerate(raw):
@@ -198,6 +201,10 @@ def _ports(raw: list, components: Mapping[str, Component]) -> tuple[Port, ...]:
             raise ModelError("give at most one of power and torque", path)
         values = {key: parse_quantity(item[key], key, f"{path}.{key}")
                   for key in ("speed", "power", "torque") if item.get(key) is not None}
+        if "speed" in values:  # a speed without a unit is read as rad/s, but said so
+            caveat = bare_speed_caveat(item["speed"], f"{path}.speed")
+            if caveat is not None:
+                caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
                           name=_text(item.get("name")), **values))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):

@@ -63,3 +63,108 @@ def test_network_view_has_components_as_nodes_and_links_as_edges() -> None:
     assert set(graph.nodes) == set(model.components)
     assert graph.number_of_edges() == len(model.links)
     assert graph.edges["4", "5", 1]["carrier"] == "3"
+
+
+PAIR = """name: pair
+components: {0: {role: frame}, 1: {teeth: 20}, 2: {teeth: 40}}
+links: [{type: mesh, between: [1, 2]}]
+ports: [{component: 1, role: input, speed: SPEED, power: 1 kW}, {component: 2, role: output}]
+"""
+
+
+@pytest.mark.parametrize("speed, shown", [("1500", "1500"), ("'1500'", "1500"),
+                                          ("-1500", "-1500")])
+def test_a_speed_without_a_unit_is_read_as_rad_s_with_a_caveat(speed, shown) -> None:
+    model = loads_model(PAIR.replace("SPEED", speed))
+    assert model.ports[0].speed == float(shown)  # still rad/s, as the format says
+    caveats = [c for c in model.warnings if c.code == "bare-speed"]
+    assert len(caveats) == 1 and caveats[0].path == "ports[0].speed"
+    # 1500 rad/s * 60 s/min / (2π rad/rev) = 14,323.9 rev/min
+    rpm = "14,324" if shown == "1500" else "-14,324"
+    assert caveats[0].message == (f"no unit: read as {shown} rad/s ({rpm} rpm); write "
+                                  f"'{shown} rad/s' to keep it, or '{shown} rpm'")
+
+
+@pytest.mark.parametrize("speed", ["1500 rad/s", "1500 rpm", "0", "25 Hz"])
+def test_a_speed_with_a_unit_or_zero_has_no_caveat(speed) -> None:
+    model = loads_model(PAIR.replace("SPEED", speed))
+    assert not [c for c in model.warnings if c.code == "bare-speed"]
+
+
+def test_bare_powers_and_torques_are_plain_si_without_caveat() -> None:
+    model = loads_model(PAIR.replace("SPEED", "10 rad/s").replace("1 kW", "1000"))
+    assert model.ports[0].power == 1000.0 and model.warnings == ()
+
+
+@pytest.mark.slow
+def test_the_library_models_write_their_speeds_with_units() -> None:
+    for path in sorted((Path(__file__).resolve().parents[2] / "models").glob("*.yaml")):
+        assert not pg.load_model(path).warnings, path.name
+
+
+def test_a_model_with_merge_keys_is_the_expanded_model() -> None:
+    merged = loads_model("""
+name: merged
+components:
+  0: {role: frame}
+  1: &gear {teeth: 20, count: 1, name: pinion}
+  2: {<<: *gear, teeth: 40, name: wheel}
+  3: &idler {teeth: 60, count: 2}
+  4: {<<: [*idler, *gear], name: last}
+links:
+  - &mesh {type: mesh, between: [1, 2], efficiency: 0.98}
+  - {<<: *mesh, between: [2, 3]}
+  - {<<: *mesh, between: [3, 4], efficiency: 0.97}
+ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 4, role: output}]
+""")
+    expanded = loads_model("""
+name: merged
+components:
+  0: {role: frame}
+  1: {teeth: 20, count: 1, name: pinion}
+  2: {teeth: 40, count: 1, name: wheel}
+  3: {teeth: 60, count: 2}
+  4: {teeth: 60, count: 2, name: last}
+links:
+  - {type: mesh, between: [1, 2], efficiency: 0.98}
+  - {type: mesh, between: [2, 3], efficiency: 0.98}
+  - {type: mesh, between: [3, 4], efficiency: 0.97}
+ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 4, role: output}]
+""")
+    assert merged == expanded
+    assert (merged.components["4"].count, merged.components["4"].name) == (2, "last")
+
+
+@pytest.mark.parametrize("line, tagged, path, words", [
+    (2, "2: {teeth: 40, internal: !!bool 'maybe'}", "components.2.internal",
+     "!!bool 'maybe' is not a boolean"),
+    (2, "2: {teeth: !!int 'abc'}", "components.2.teeth", "!!int 'abc' is not an integer"),
+    (5, "links: [{type: mesh, between: [1, 2], efficiency: !!float ''}]",
+     "links[0].efficiency", "!!float '' is not a number"),
+    (2, "2: {teeth: !!binary aGVsbG8=}", "components.2.teeth", "unsupported YAML tag !!binary"),
+    (2, "2: {teeth: 40, note: !foo x}", "components.2.note", "unsupported YAML tag !foo"),
+])
+def test_a_bad_tag_in_a_model_names_line_and_path(line, tagged, path, words) -> None:
+    rows = TAGGED_PAIR.split("\n")
+    rows[line] = ("  " if line == 2 else "") + tagged
+    with pytest.raises(ModelError) as info:
+        loads_model("\n".join(rows))
+    assert info.value.path == path and words in info.value.message
+    assert f"(line {line + 1})" in info.value.message
+
+
+def test_good_tags_in_a_model_read_as_the_plain_values() -> None:
+    tagged = loads_model(TAGGED_PAIR.replace("teeth: 40", "teeth: !!int '40'")
+                         .replace("efficiency: 0.98", "efficiency: !!float '0.98'")
+                         .replace("name: pair", "name: !!str pair"))
+    assert tagged == loads_model(TAGGED_PAIR)
+
+
+TAGGED_PAIR = """name: pair
+components:
+  2: {teeth: 40}
+  0: {role: frame}
+  1: {teeth: 20}
+links: [{type: mesh, between: [1, 2], efficiency: 0.98}]
+ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 2, role: output}]
+"""
