@@ -152,3 +152,29 @@ def undercut_limit(pressure_angle_deg: float = 20.0, shift: float = 0.0,
     beta = math.radians(helix_angle_deg)
     alpha_t = math.atan(math.tan(math.radians(pressure_angle_deg)) / math.cos(beta))
     return 2.0 * (addendum - shift) * math.cos(beta) / math.sin(alpha_t) ** 2
+
+
+def working_centre_distance(teeth_1: int, teeth_2: int, internal: bool, module: float,
+                            pressure_angle_deg: float = 20.0, helix_angle_deg: float = 0.0,
+                            shift_1: float = 0.0, shift_2: float = 0.0) -> float:
+    """Working centre distance of an involute pair (mm; DIN 3960): the reference
+    ``a = m_t (z_2 ± z_1) / 2`` times ``cos α_t / cos α_w``, where
+    ``inv α_w = inv α_t + 2 tan α_n (x_1 ± x_2) / (z_1 ± z_2)`` (− for an internal gear 2).
+
+    >>> working_centre_distance(20, 40, False, 2.0)                 # m (z1 + z2) / 2
+    60.0
+    >>> round(working_centre_distance(15, 48, True, 1.0, shift_1=0.2, shift_2=0.9), 4)
+    16.9802
+    """
+    from powergraph.gears.involute import involute, inverse_involute
+
+    sign = -1.0 if internal else 1.0
+    beta = math.radians(helix_angle_deg)
+    alpha_n = math.radians(pressure_angle_deg)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
+    reference = module / math.cos(beta) * abs(teeth_2 + sign * teeth_1) / 2
+    shifts = shift_1 + sign * shift_2
+    if shifts == 0:
+        return reference
+    inv_w = involute(alpha_t) + 2 * math.tan(alpha_n) * shifts / (teeth_1 + sign * teeth_2)
+    return reference * math.cos(alpha_t) / math.cos(inverse_involute(inv_w))
