@@ -196,7 +196,7 @@ def _coaxiality(meshes: list[tuple]) -> tuple[list[Caveat], float | None, float 
         if spread <= CENTRE_TOLERANCE * max(c.mm for c in centres):
             return [], float(centres[0].teeth), centres[0].mm
         text = ", ".join(f"{_place([c.link])} {c.mm:.4g} mm" for c in centres)
-        return [Caveat(f"the working centre distances of planet {centres[0].planet.id}'s "
+        return [Caveat(f"the working centre distances of planet {_planet_name(centres)}'s "
                        f"meshes differ ({text}): the planets cannot share the axis of "
                        "the central gears", _place([c.link for c in centres]),
                        "coaxiality")], None, None
@@ -216,10 +216,15 @@ def _coaxiality_words(centres: list[_Centre]) -> str:
                 "cannot share the axis of sun and ring (one module, no profile shift; give "
                 "the meshes' geometry with their shifts if they are shifted)")
     text = "; ".join(c.words() for c in centres)
-    return (f"the centre distances of planet {centres[0].planet.id}'s meshes differ, in "
+    return (f"the centre distances of planet {_planet_name(centres)}'s meshes differ, in "
             f"half-modules: {text}: the planets cannot share the axis of the central gears "
             "(one module, no profile shift; give the meshes' geometry with their shifts if "
             "they are shifted)")
+
+
+def _planet_name(centres: list[_Centre]) -> str:
+    """The planet's gears (its steps) meshing the central gears: ``p1/p2``."""
+    return "/".join(sorted({c.planet.id for c in centres}))
 
 
 def _rings_not_internal(centres: list[_Centre]) -> list[Caveat]:
@@ -234,12 +239,16 @@ def _rings_not_internal(centres: list[_Centre]) -> list[Caveat]:
         (other,) = others
         as_ring = c.central.teeth - c.planet.teeth
         if other != c.teeth and (as_ring == other or c.central.teeth > other):
+            fits = (f"as a ring it would mesh at {c.central.teeth} − {c.planet.teeth} = "
+                    f"{as_ring} half-modules" if as_ring == other else
+                    f"its pitch circle ({c.central.teeth} half-modules across) surrounds the "
+                    f"planets' axes")
             out.append(Caveat(
-                f"gear {c.central.id} ({c.central.teeth} teeth) meshes planet "
-                f"{c.planet.id} ({c.planet.teeth}) as a ring: {c.central.teeth} − "
-                f"{c.planet.teeth} = {as_ring} against {other} half-modules for the planet's "
-                f"other mesh, but it is not internal, so its ratio has the wrong sign; "
-                "write internal: true", f"components.{c.central.raw_id}", "ring-not-internal"))
+                f"gear {c.central.id} ({c.central.teeth} teeth) meshes planet {c.planet.id} "
+                f"({c.planet.teeth}) like a ring: the planet's other mesh puts its axis at "
+                f"{other} half-modules and {fits}, but it is not internal, so the mesh's "
+                "ratio has the wrong sign; write internal: true",
+                f"components.{c.central.raw_id}", "ring-not-internal"))
     return out
 
 
@@ -370,8 +379,10 @@ def _assembly_words(central: list, coefficients: list[int], n: int, phased: bool
                 + f" is not whole: {tail}")
     if len(central) == 2:
         (z1, z2), (a1, a2) = [g.teeth for g in central], coefficients
-        if abs(a1) == abs(a2):
+        if a1 == -a2:                         # a simple planet between sun and ring
             return f"({z1} + {z2})/{n} = {(z1 + z2) / n:.4g} is not whole ({names}): {tail}"
+        if a1 == a2:                          # a double planet between sun and ring
+            return f"({z2} − {z1})/{n} = {(z2 - z1) / n:.4g} is not whole ({names}): {tail}"
         value = (a2 * z1 - a1 * z2) / (n * math.gcd(a1, a2))
         return (f"({a2}·{z1} − ({a1})·{z2})/({n}·gcd({a1}, {a2})) = {value:.4g} is not whole "
                 f"({names}): {tail}")
