@@ -40,9 +40,7 @@ import numpy as np
 
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
-
-#: Working centre distances (mm) of one planet agree within this fraction.
-CENTRE_TOLERANCE = 2e-4
+from powergraph.model.feasibility_axes import coaxiality, gear_module, mesh_geometry
 
 
 @dataclass
@@ -127,7 +125,7 @@ def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
     wrong_rings: set[str] = set()
     for body in sorted(pset.planets):
         meshes = _central_meshes(model, pset, body)
-        found, teeth, mm = _coaxiality(meshes)
+        found, teeth, mm = coaxiality(meshes)
         caveats += found
         if any(c.code == "ring-not-internal" for c in found):
             wrong_rings.add(body)
@@ -137,129 +135,6 @@ def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
         if not wrong_rings.intersection(cluster):
             caveats += _assembly(model, pset, cluster, bool(phased.intersection(cluster)))
     return caveats
-
-
-# --- coaxiality and rings -----------------------------------------------------------------
-@dataclass(frozen=True)
-class _Centre:
-    """One central mesh of a planet: its centre distance in half-modules (one module, no
-    shift) and in mm when a module is known (working, with the mesh's shifts)."""
-
-    link: Any
-    central: Any
-    planet: Any
-    teeth: int
-    mm: float | None
-
-    def words(self) -> str:
-        if self.central.internal:
-            return f"ring {self.central.teeth} − planet {self.planet.teeth} = {self.teeth}"
-        return f"sun {self.central.teeth} + planet {self.planet.teeth} = {self.teeth}"
-
-
-def _centre(link: Any, central: Any, planet: Any) -> _Centre:
-    teeth = planetary.centre_distance(central.teeth, planet.teeth, central.internal)
-    geometry = _mesh_geometry(link)
-    if geometry is not None:
-        mm = planetary.working_centre_distance(
-            geometry.teeth_1, geometry.teeth_2, geometry.internal, geometry.module,
-            geometry.pressure_angle_deg, geometry.helix_angle_deg, geometry.shift_1,
-            geometry.shift_2)
-    else:
-        module = _module(central) or _module(planet)
-        mm = None if module is None else module * teeth / 2
-    return _Centre(link, central, planet, teeth, mm)
-
-
-def _mesh_geometry(link: Any) -> Any:
-    """The involute geometry of a mesh (its ``geometry`` block, alone or with friction)."""
-    if "geometry" in link.blocks:
-        return link.blocks["geometry"]
-    return getattr(link.blocks.get("friction"), "geometry", None)
-
-
-def _module(component: Any) -> float | None:
-    return getattr(component.geometry, "module", None)
-
-
-def _coaxiality(meshes: list[tuple]) -> tuple[list[Caveat], float | None, float | None]:
-    """Caveats on one planet's central meshes, and its centre distance (half-modules, and
-    mm when every mesh gives a module) when they agree."""
-    centres = [_centre(*m) for m in meshes]
-    if not centres:
-        return [], None, None
-    rings = _rings_not_internal(centres)
-    if rings:
-        return rings, None, None
-    if all(c.mm is not None for c in centres):
-        spread = max(c.mm for c in centres) - min(c.mm for c in centres)
-        if spread <= CENTRE_TOLERANCE * max(c.mm for c in centres):
-            return [], float(centres[0].teeth), centres[0].mm
-        text = ", ".join(f"{_place([c.link])} {c.mm:.4g} mm" for c in centres)
-        return [Caveat(f"the working centre distances of planet {_planet_name(centres)}'s "
-                       f"meshes differ ({text}): the planets cannot share the axis of "
-                       "the central gears", _place([c.link for c in centres]),
-                       "coaxiality")], None, None
-    if len({c.teeth for c in centres}) == 1:
-        return [], float(centres[0].teeth), None
-    return [Caveat(_coaxiality_words(centres), _place([c.link for c in centres]),
-                   "coaxiality")], None, None
-
-
-def _coaxiality_words(centres: list[_Centre]) -> str:
-    simple = len(centres) == 2 and centres[0].planet.id == centres[1].planet.id and \
-        sorted(c.central.internal for c in centres) == [False, True]
-    if simple:
-        sun, ring = sorted(centres, key=lambda c: c.central.internal)
-        zs, zp, zr = sun.central.teeth, sun.planet.teeth, ring.central.teeth
-        return (f"sun {zs} + 2 × planet {zp} = {zs + 2 * zp} ≠ ring {zr}: the planets "
-                "cannot share the axis of sun and ring (one module, no profile shift; give "
-                "the meshes' geometry with their shifts if they are shifted)")
-    text = "; ".join(c.words() for c in centres)
-    return (f"the centre distances of planet {_planet_name(centres)}'s meshes differ, in "
-            f"half-modules: {text}: the planets cannot share the axis of the central gears "
-            "(one module, no profile shift; give the meshes' geometry with their shifts if "
-            "they are shifted)")
-
-
-def _planet_name(centres: list[_Centre]) -> str:
-    """The planet's gears (its steps) meshing the central gears: ``p1/p2``."""
-    return "/".join(sorted({c.planet.id for c in centres}))
-
-
-def _rings_not_internal(centres: list[_Centre]) -> list[Caveat]:
-    """An external central gear that fits as a ring (its teeth minus the planet's give the
-    other meshes' centre distance) or surrounds the planets (pitch circle beyond their
-    axes): it should be ``internal: true``."""
-    out = []
-    for c in centres:
-        others = {o.teeth for o in centres if o is not c}
-        if c.central.internal or len(others) != 1:
-            continue
-        (other,) = others
-        as_ring = c.central.teeth - c.planet.teeth
-        if other != c.teeth and (as_ring == other or c.central.teeth > other):
-            fits = (f"as a ring it would mesh at {c.central.teeth} − {c.planet.teeth} = "
-                    f"{as_ring} half-modules" if as_ring == other else
-                    f"its pitch circle ({c.central.teeth} half-modules across) surrounds the "
-                    f"planets' axes")
-            out.append(Caveat(
-                f"gear {c.central.id} ({c.central.teeth} teeth) meshes planet {c.planet.id} "
-                f"({c.planet.teeth}) like a ring: the planet's other mesh puts its axis at "
-                f"{other} half-modules and {fits}, but it is not internal, so the mesh's "
-                "ratio has the wrong sign; write internal: true",
-                f"components.{c.central.raw_id}", "ring-not-internal"))
-    return out
-
-
-def _place(links: list) -> str:
-    """``links[3]``, ``links[0..1]`` (consecutive) or ``links[0,3]``."""
-    index = sorted({link.index for link in links})
-    if len(index) == 1:
-        return f"links[{index[0]}]"
-    if index == list(range(index[0], index[-1] + 1)) and len(index) == 2:
-        return f"links[{index[0]}..{index[1]}]"
-    return f"links[{','.join(map(str, index))}]"
 
 
 # --- neighbours and assembly --------------------------------------------------------------
@@ -301,11 +176,11 @@ def _tip(gear: Any, links: Any, model: Any) -> tuple[float | None, float]:
     """Module and ``h_a* + x`` of ``gear``: from a mesh geometry that names it, else its
     own geometry's module and an unshifted addendum of one module."""
     for link in links:
-        g = _mesh_geometry(link)
+        g = mesh_geometry(link)
         if g is not None and gear.id in link.between:
             first = _pinion(link, model) == gear.id
             return g.module, g.addendum + (g.shift_1 if first else g.shift_2)
-    return _module(gear), 1.0
+    return gear_module(gear), 1.0
 
 
 def _pinion(link: Any, model: Any) -> str:
@@ -421,7 +296,7 @@ def _undercut(model: Any) -> list[Caveat]:
     ``2 (h_a* − x) cos β / sin² α_t`` teeth is undercut."""
     out = []
     for link in model.meshes:
-        g = _mesh_geometry(link)
+        g = mesh_geometry(link)
         if g is None:
             continue
         first = _pinion(link, model)
