@@ -113,26 +113,25 @@ def _planet_name(centres: list[_Centre]) -> str:
 
 def _rings_not_internal(centres: list[_Centre]) -> list[Caveat]:
     """An external central gear that fits as a ring (its teeth minus the planet's give the
-    other meshes' centre distance) or surrounds the planets (pitch circle beyond their
-    axes): it should be ``internal: true``."""
+    other meshes' centre distance ``D``) or surrounds the planets (its pitch radius, ``z``
+    half-modules, reaches beyond theirs, ``D + z_p``): it should be ``internal: true``."""
     out = []
     for c in centres:
         others = {o.teeth for o in centres if o is not c}
         if c.central.internal or len(others) != 1:
             continue
         (other,) = others
-        as_ring = c.central.teeth - c.planet.teeth
-        if other != c.teeth and (as_ring == other or c.central.teeth > other):
-            fits = (f"as a ring it would mesh at {c.central.teeth} − {c.planet.teeth} = "
-                    f"{as_ring} half-modules" if as_ring == other else
-                    f"its pitch circle ({c.central.teeth} half-modules across) surrounds the "
-                    f"planets' axes")
-            out.append(Caveat(
-                f"gear {c.central.id} ({c.central.teeth} teeth) meshes planet {c.planet.id} "
-                f"({c.planet.teeth}) like a ring: the planet's other mesh puts its axis at "
-                f"{other} half-modules and {fits}, but it is not internal, so the mesh's "
-                "ratio has the wrong sign; write internal: true",
-                f"components.{c.central.raw_id}", "ring-not-internal"))
+        z, zp = c.central.teeth, c.planet.teeth
+        if other == c.teeth or z - zp < other:
+            continue
+        fits = (f"as a ring it would mesh at {z} − {zp} = {z - zp}" if z - zp == other else
+                f"its pitch circle (radius {z}) surrounds the planets' ({other} + {zp} = "
+                f"{other + zp})")
+        out.append(Caveat(
+            f"gear {c.central.id} ({z} teeth) meshes planet {c.planet.id} ({zp}) like a "
+            f"ring: the planet's other mesh puts its axis at {other} half-modules and {fits}, "
+            "but it is not internal, so the mesh's ratio has the wrong sign; write "
+            "internal: true", f"components.{c.central.raw_id}", "ring-not-internal"))
     return out
 
 

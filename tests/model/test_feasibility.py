@@ -151,15 +151,33 @@ def test_neighbouring_planets_collide() -> None:
     assert codes(simple(12, 30, 72, n=3)) == []     # 2·21·sin 60° = 36.37 > 32
 
 
+def test_neighbouring_planets_in_mm_with_a_module() -> None:
+    # 18/27/72 at module 2 mm: a = 2·(18 + 27)/2 = 45 mm, tip d_a = 2·(27 + 2) = 58 mm;
+    # 5 planets: 2·45·sin 36° = 52.90 mm < 58 (and (18 + 72)/5 = 18 assembles); 4 planets:
+    # 2·45·sin 45° = 63.64 mm clears
+    doc = simple(18, 27, 72, n=5)
+    for link in doc["links"][:2]:
+        link["geometry"] = {"module": 2}
+    code, path, message = caveats(doc)[0]
+    assert (code, path) == ("planet-clearance", "components.p.count")
+    assert "tip diameter 58 mm ≥ 2·a·sin(π/5) = 52.9 mm" in message
+    doc["components"]["p"]["count"] = 4
+    assert codes(doc) == []
+
+
 # --- internal gears and carriers ----------------------------------------------------------
 def test_a_ring_not_marked_internal() -> None:
     # 72 external: sun 24 + 24 = 48 but 72 + 24 = 96; as a ring 72 − 24 = 48 fits
     found = caveats(simple(24, 24, 72, internal=False))
     assert [(c, p) for c, p, _ in found] == [("ring-not-internal", "components.r")]
     assert "72 − 24 = 48" in found[0][2]
-    # 70 external: as a ring 46 ≠ 48, but its pitch circle (70 half-modules across) lies
-    # beyond the planets' axes (48): a ring all the same
-    assert codes(simple(24, 24, 70, internal=False)) == ["ring-not-internal"]
+    # 74 external: as a ring 74 − 24 = 50 ≠ 48, but its pitch radius (74 half-modules)
+    # reaches beyond the planets' (48 + 24 = 72): a ring all the same (off axis once
+    # internal); a 30-tooth gear (30 − 24 = 6 < 48) is no ring, only off axis
+    found = caveats(simple(24, 24, 74, internal=False))
+    assert [(c, p) for c, p, _ in found] == [("ring-not-internal", "components.r")]
+    assert "surrounds the planets' (48 + 24 = 72)" in found[0][2]
+    assert codes(simple(24, 24, 30, internal=False))[0] == "coaxiality"
 
 
 def test_a_planet_meshing_with_and_without_its_carrier() -> None:
