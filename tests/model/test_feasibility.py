@@ -153,15 +153,15 @@ def test_neighbouring_planets_collide() -> None:
 
 def test_neighbouring_planets_in_mm_with_a_module() -> None:
     # 18/27/72 at module 2 mm: a = 2·(18 + 27)/2 = 45 mm, tip d_a = 2·(27 + 2) = 58 mm;
-    # 5 planets: 2·45·sin 36° = 52.90 mm < 58 (and (18 + 72)/5 = 18 assembles); 4 planets:
-    # 2·45·sin 45° = 63.64 mm clears
+    # 5 planets: 2·45·sin 36° = 52.90 mm < 58 (and (18 + 72)/5 = 18 assembles); 3 planets:
+    # 2·45·sin 60° = 77.94 mm clears (and 90/3 = 30)
     doc = simple(18, 27, 72, n=5)
     for link in doc["links"][:2]:
         link["geometry"] = {"module": 2}
     code, path, message = caveats(doc)[0]
     assert (code, path) == ("planet-clearance", "components.p.count")
     assert "tip diameter 58 mm ≥ 2·a·sin(π/5) = 52.9 mm" in message
-    doc["components"]["p"]["count"] = 4
+    doc["components"]["p"]["count"] = 3
     assert codes(doc) == []
 
 
