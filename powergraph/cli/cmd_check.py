@@ -4,12 +4,17 @@ Beyond the file format, ``check`` runs the train's analysis: the given speeds mu
 determine the motion, and the ports' powers/torques the loads (a train with P ports and D
 degrees of freedom takes the power or torque of P - D ports), so that a model that passes
 ``check`` also solves.
+
+The model's warnings (``Model.warnings``: a planetary set that cannot be built, ...;
+docs/feasibility.md) follow the ok line on stdout as ``warning: PATH: MESSAGE`` lines, and
+the status stays 0. With ``--strict`` a model with warnings is refused: one
+``powergraph: error: PATH: MESSAGE`` line per warning on stderr, exit status 2.
 """
 from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import load
+from powergraph.cli.common import add_strict, load, print_caveats, refuse_caveats
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -18,6 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                         "given speeds determine the motion and the given "
                                         "powers/torques the loads.")
     parser.add_argument("model", help="model file (YAML)")
+    add_strict(parser)
     parser.set_defaults(handler=run)
 
 
@@ -27,6 +33,8 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.statics.equilibrium import loads_of
 
     model = load(args.model)
+    if args.strict and model.warnings:
+        return refuse_caveats(model.warnings)
     kin = solve_speeds(model)
     needed = loads_of(model, kin).needed
     solve(model)  # missing or contradictory loads, power directions
@@ -37,4 +45,5 @@ def run(args: argparse.Namespace) -> int:
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.bodies)} bodies, {meshes} mesh{'es' if meshes != 1 else ''}, "
           f"{kin.dof} DOF, {loads}")
+    print_caveats(model.warnings)
     return 0

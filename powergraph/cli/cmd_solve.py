@@ -1,9 +1,10 @@
-"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]``."""
+"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
+[--strict]`` (``--strict``: a model with warnings is refused before solving, exit 2)."""
 from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import efficiency_arg, load, print_json
+from powergraph.cli.common import add_strict, efficiency_arg, load, print_json, refuse_caveats
 
 METHODS = ("virtual-power", "wang2021")
 
@@ -21,11 +22,14 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "paper's split/virtual power method, RV-type trains)")
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="override every mesh's basic efficiency")
+    add_strict(parser)
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
+    if args.strict and model.warnings:
+        return refuse_caveats(model.warnings)
     if args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 

@@ -49,6 +49,27 @@ def load(path: str, mesh_efficiency: float | None = None):
     return model.with_mesh_efficiency(mesh_efficiency) if mesh_efficiency is not None else model
 
 
+def add_strict(parser: argparse.ArgumentParser) -> None:
+    """The ``--strict`` option: the model's caveats (``Model.warnings``) become errors."""
+    parser.add_argument("--strict", action="store_true",
+                        help="treat the model's warnings (docs/feasibility.md) as errors: "
+                             "exit 2 with one line per warning")
+
+
+def refuse_caveats(caveats: Any) -> int:
+    """``--strict``: print each caveat as ``powergraph: error: PATH: MESSAGE`` on stderr;
+    the exit status, 2 if there was any, else 0."""
+    for caveat in caveats:
+        print(f"powergraph: error: {caveat}", file=sys.stderr)
+    return 2 if caveats else 0
+
+
+def print_caveats(caveats: Any) -> None:
+    """Each caveat as ``warning: PATH: MESSAGE`` on stdout."""
+    for caveat in caveats:
+        print(f"warning: {caveat}")
+
+
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
 

@@ -1,5 +1,7 @@
 """The ``friction:`` and ``geometry:`` blocks of a mesh (docs/losses.md), read into
-:class:`MeshFriction`: the pair's involute geometry and its friction law."""
+:class:`MeshFriction`: the pair's involute geometry and its friction law. A ``geometry``
+alone (no friction) is read by :func:`parse_mesh_geometry`: the feasibility checks use it
+(working centre distance, undercut; docs/feasibility.md)."""
 from __future__ import annotations
 
 import math
@@ -69,16 +71,10 @@ def parse_mesh_friction(link: int, friction: Mapping, geometry: Mapping | None,
         raise ModelError("a mesh with friction needs its geometry (at least module)",
                          f"{path}.geometry")
     gears = sorted(pair, key=lambda gear: bool(gear[2]))     # the internal gear second
-    if any(teeth is None for _, teeth, _ in gears):
-        raise ModelError("a mesh with friction needs the teeth of both gears", f"{path}.between")
-    g = _geometry(geometry, gears, f"{path}.geometry")
+    g = parse_mesh_geometry(geometry, pair, path, "a mesh with friction")
     face = geometry.get("face_width")
     face_width = None if face is None else parse_quantity(face, "length",
                                                           f"{path}.geometry.face_width")
-    try:
-        mesh_loss(g)
-    except ModelError as exc:
-        raise ModelError(str(exc), f"{path}.geometry") from None
     if "mu" in friction:
         return MeshFriction(link, gears[0][0], g, face_width, "constant",
                             mu=float(friction["mu"]))
@@ -88,6 +84,29 @@ def parse_mesh_friction(link: int, friction: Mapping, geometry: Mapping | None,
                         viscosity=_viscosity(friction["viscosity"], f"{path}.friction.viscosity"),
                         roughness=_roughness(friction["roughness"], f"{path}.friction.roughness"),
                         lubricant_factor=float(friction.get("lubricant_factor", 1.0)))
+
+
+def parse_mesh_geometry(geometry: Mapping, pair: tuple[Any, Any], path: str,
+                        what: str = "a mesh with geometry") -> MeshGeometry:
+    """Read a mesh's ``geometry`` block (schema-checked) into a :class:`MeshGeometry`,
+    the external gear first; the pair must mesh (no interference, contact ratio >= 1).
+
+    ``pair`` holds the two gears as ``(id, teeth, internal)``; ``path`` is the link's place.
+
+    >>> g = parse_mesh_geometry({"module": 1, "shifts": [0.2, 0.5]},
+    ...                         (("r", 48, True), ("p", 15, False)), "links[1]")
+    >>> g.teeth_1, g.teeth_2, g.internal, g.shift_2
+    (15, 48, True, 0.5)
+    """
+    gears = sorted(pair, key=lambda gear: bool(gear[2]))     # the internal gear second
+    if any(teeth is None for _, teeth, _ in gears):
+        raise ModelError(f"{what} needs the teeth of both gears", f"{path}.between")
+    g = _geometry(geometry, gears, f"{path}.geometry")
+    try:
+        mesh_loss(g)
+    except ModelError as exc:
+        raise ModelError(str(exc), f"{path}.geometry") from None
+    return g
 
 
 def _geometry(raw: Mapping, gears, path: str) -> MeshGeometry:

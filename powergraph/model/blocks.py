@@ -5,7 +5,8 @@
 - ``links[i].backlash`` / ``links[i].backlash_arcmin`` (docs/backlash.md):
   :mod:`powergraph.model.block_backlash`
 - ``links[i].cycloid`` (docs/cycloid.md): :mod:`powergraph.model.block_cycloid`
-- ``links[i].friction`` with ``links[i].geometry`` (docs/losses.md):
+- ``links[i].friction`` with ``links[i].geometry`` (docs/losses.md), or ``geometry`` alone
+  (the pair's involute geometry for the feasibility checks, docs/feasibility.md):
   :mod:`powergraph.model.block_friction`
 - ``links[i].pins`` (+ ``output_pins``, ``crank_bearing``) on a cycloid mesh
   (docs/losses.md): :mod:`powergraph.model.block_pins`, stored as the mesh's friction law
@@ -43,13 +44,19 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
         from powergraph.model.block_cycloid import validate_cycloid
 
         blocks["cycloid"] = validate_cycloid(raw["cycloid"], f"{path}.cycloid", pair, components)
+    pins = any(key in raw for key in ("pins", "output_pins", "crank_bearing"))
     if "geometry" in raw and "friction" not in raw:
-        raise ModelError("a mesh's geometry is used by its friction block; add friction: "
-                         "{mu: ...} or remove geometry", f"{path}.geometry")
+        if pins or "cycloid" in raw:
+            raise ModelError("a cycloid mesh takes no involute geometry (its pins block or "
+                             "the disc's geometry gives its dimensions)", f"{path}.geometry")
+        from powergraph.model.block_friction import parse_mesh_geometry
+
+        gears = tuple((g, components[g].teeth, components[g].internal) for g in pair)
+        blocks["geometry"] = parse_mesh_geometry(raw["geometry"], gears, path)
     if "friction" in raw and "efficiency" in raw:
         raise ModelError("give the mesh's efficiency or its friction, not both (the "
                          "friction law sets the efficiency)", f"{path}.efficiency")
-    if any(key in raw for key in ("pins", "output_pins", "crank_bearing")):
+    if pins:
         from powergraph.model.block_pins import parse_pins
 
         blocks["friction"] = parse_pins(raw, path, pair, components)   # docs/losses.md

@@ -111,8 +111,10 @@ _CRANK_BEARING = {
 _MESH_GEOMETRY = {
     "type": "object", "title": "mesh geometry",
     "description": "Involute geometry of the pair, used by its friction block "
-                   "(docs/losses.md). The pinion is the external gear of an internal pair, "
-                   "the link's first gear otherwise.",
+                   "(docs/losses.md) and by the feasibility checks (working centre "
+                   "distance, undercut; docs/feasibility.md); it may stand without "
+                   "friction. The pinion is the external gear of an internal pair, the "
+                   "link's first gear otherwise.",
     "properties": {
         "module": _length("module", "Normal module."),
         "face_width": _length("face_width", "Face width (needed by friction model "

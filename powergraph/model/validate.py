@@ -78,6 +78,9 @@ def _model(data: Any, source: str | None) -> Model:
         from powergraph.model.block_bearing import check_bearing_loads
 
         check_bearing_loads(model)
+    from powergraph.model.feasibility import feasibility_caveats
+
+    model = dataclasses.replace(model, warnings=model.warnings + feasibility_caveats(model))
     if "tolerances" in data:
         from powergraph.model.blocks import validate_tolerances
 

@@ -128,11 +128,29 @@ def test_efficiency_beside_friction_is_refused() -> None:
     assert str(info.value).startswith("links[0].efficiency")
 
 
-def test_geometry_without_friction_is_refused() -> None:
-    data = _pair({"mu": 0.05}, {"module": 2})
+def test_geometry_without_friction_describes_the_pair_and_keeps_the_efficiency() -> None:
+    # A geometry alone (docs/feasibility.md) is the pair's involute geometry for the
+    # feasibility checks: the efficiency stays the one given (no friction law).
+    data = _pair({"mu": 0.05}, {"module": 2, "shifts": [0.1, -0.1]})
     del data["links"][0]["friction"]
-    with pytest.raises(ModelError, match="friction"):
+    data["links"][0]["efficiency"] = 0.97
+    model = model_from_dict(data)
+    mesh = model.links[0]
+    assert mesh.efficiency == 0.97 and "friction" not in mesh.blocks
+    assert (mesh.blocks["geometry"].module, mesh.blocks["geometry"].shift_1) == (2.0, 0.1)
+    result = pg.solve(model)
+    assert_conservation(result)
+    assert result.efficiency == pytest.approx(0.97)
+
+
+def test_a_geometry_alone_must_mesh() -> None:
+    # 20/40 with the pinion shifted by -1.5: inv α_w = inv 20° + 2 tan 20° (-1.5)/60 < 0,
+    # no working pressure angle: the pair cannot mesh, refused as with friction.
+    data = _pair({"mu": 0.05}, {"module": 2, "shifts": [-1.5, 0]})
+    del data["links"][0]["friction"]
+    with pytest.raises(ModelError) as info:
         model_from_dict(data)
+    assert str(info.value).startswith("links[0].geometry")
 
 
 # --- Cycloid stages: pins, output pins and crank bearing (docs/losses.md) -------------------

@@ -30,7 +30,8 @@ from typing import Any, Callable
 import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
-from powergraph.analyses.synthesis.teeth import Layout, assembles, layouts
+from powergraph.analyses.synthesis.teeth import Layout, layouts
+from powergraph.gears.planetary import assembles, relative_turns
 
 #: Grid points evaluated at once (bounds the memory of a search).
 SUB_CHUNK = 1 << 17
@@ -207,18 +208,12 @@ def _cluster_meshes(layout: Layout, cluster: list[int], z: dict) -> tuple[list, 
     :func:`~powergraph.analyses.synthesis.teeth.assembles`): each planet's turn is
     ``num/den`` times the first one's, through the planet-planet meshes."""
     st, graph = layout.structure, layout.graph
-    num = {cluster[0]: np.ones_like(z[next(iter(z))])}
-    den = {cluster[0]: np.ones_like(num[cluster[0]])}
-    changed = True
-    while changed:
-        changed = False
-        for k, (u, v, _) in enumerate(graph.gear_pairs):
-            if st.kinds[k] != "pp":
-                continue
-            for (p, sp_), (q, sq) in (((u, 0), (v, 1)), ((v, 1), (u, 0))):
-                if p in num and q not in num:  # z_p d_p = -z_q d_q (external mesh)
-                    num[q], den[q] = -num[p] * z[(k, sp_)], den[p] * z[(k, sq)]
-                    changed = True
+    ones = np.ones_like(z[next(iter(z))])
+    pp = [(u, v, z[(k, 0)], z[(k, 1)]) for k, (u, v, _) in enumerate(graph.gear_pairs)
+          if st.kinds[k] == "pp"]
+    turns = relative_turns(cluster[0], pp)
+    num = {p: n * ones for p, (n, _) in turns.items()}
+    den = {p: d * ones for p, (_, d) in turns.items()}
     common = np.prod([den[p] for p in cluster], axis=0)
     coax, coefficients = [], []
     internal = layout.internal

@@ -10,6 +10,9 @@ construction or by a vectorised filter (docs/synthesis.md):
 - **neighbour** — the tip circles (``z + 2`` modules) of adjacent planets clear:
   ``z + 2 < D sin(pi / n)`` with ``D`` the centre distance in half-modules;
 - **assembly** — ``n`` identical planets fit at equal spacing (:func:`assembles`);
+
+(the conditions themselves live in :mod:`powergraph.gears.planetary`, shared with the
+model's feasibility caveats);
 - internal pairs differ by at least :data:`MIN_INTERNAL_DIFFERENCE` teeth (involute rule
   of thumb against tip interference), except the one-tooth cycloid/pin pair of a K-H-V
   stage (a planet joined to a coaxial link by a coupling).
@@ -31,6 +34,9 @@ from typing import Iterator, Mapping
 import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
+# The conditions themselves (one copy, shared with the model's feasibility caveats):
+from powergraph.gears.planetary import assembles, neighbours_clear  # noqa: F401
+from powergraph.gears.planetary import centre_distance as planet_centre
 
 #: Smallest tooth difference of an internal involute pair (ring - planet).
 MIN_INTERNAL_DIFFERENCE = 10
@@ -187,7 +193,7 @@ def cp_teeth(block: PlanetBlock, values: np.ndarray) -> dict[int, tuple[np.ndarr
 def centre_distance(block: PlanetBlock, values: np.ndarray) -> np.ndarray:
     """Planet centre distance in half-modules (``z_sun + z_planet``), per row."""
     step0 = values[:, block.step_of(block.cp_pairs[0])]
-    return values[:, -1] - step0 if block.cp_pairs[0] in block.internal else values[:, -1] + step0
+    return planet_centre(values[:, -1], step0, block.cp_pairs[0] in block.internal)
 
 
 def _partitions(items: tuple[int, ...]) -> Iterator[list[list[int]]]:
@@ -296,7 +302,7 @@ def _candidate_rows(steps, cp, rings, teeth: tuple[int, int], planets: int) -> n
     first = next(i for i, step in enumerate(steps) if cp[0] in step)
     a, z = np.meshgrid(axes, axes, indexing="ij")
     anchor, step0 = a.ravel(), z.ravel()
-    centre = anchor - step0 if cp[0] in rings else anchor + step0
+    centre = planet_centre(anchor, step0, cp[0] in rings)
     columns = {first: step0}
     keep = centre > 0
     anchor, centre, columns[first] = anchor[keep], centre[keep], step0[keep]
@@ -320,75 +326,3 @@ def _candidate_rows(steps, cp, rings, teeth: tuple[int, int], planets: int) -> n
         columns = {j: c[rows] for j, c in columns.items()}
         columns[i] = new
     return np.stack([columns[i] for i in range(len(steps))] + [anchor], axis=1)
-
-
-def assembles(coaxial: list[np.ndarray], coefficients: list[np.ndarray], planets: int,
-              phased: bool = False) -> np.ndarray:
-    """Can ``planets`` identical planet clusters be assembled at equal spacing?
-
-    Turn the whole train by ``theta = 2 pi / n``: the carrier looks the same, and a copy
-    fits the next place if turning the cluster's planets about their own axes (by ``t``
-    times a fixed vector, the one degree of freedom the cluster has with its carrier held)
-    brings every coaxial gear ``j`` back onto its own teeth:
-    ``z_j / n + a_j t`` is an integer for every coaxial mesh ``j``, where ``a_j`` is
-    ``-z_pj`` for a sun, ``+z_pj`` for a ring (``z_pj`` the planet gear meshing it), times
-    the cluster's speed ratio for a planet reached through planet-planet meshes (scaled to
-    integers). One mesh always fits; two give the closed form
-    ``(a_2 z_1 - a_1 z_2) = 0 mod n gcd(a_1, a_2)`` — for a simple planet
-    ``(z_s + z_r) / n`` whole, for a stepped one ``(z_s z_p2 + z_r z_p1) / (n gcd(z_p1, z_p2))``;
-    more are searched over ``t = (m - z_1/n) / a_1``, ``m = 0 .. |a_1| - 1``. A ``phased``
-    cluster (a crank carrying a disc, identical in every copy) cannot turn: ``t = 0`` and
-    every ``z_j / n`` must be whole.
-
-    >>> ones = lambda v: np.array([v])
-    >>> bool(assembles([ones(12), ones(72)], [ones(-30), ones(30)], 3)[0])   # (12+72)/3
-    True
-    >>> bool(assembles([ones(13), ones(72)], [ones(-30), ones(30)], 3)[0])
-    False
-    """
-    n = planets
-    size = len(coaxial[0]) if coaxial else 0
-    if n <= 1 or not coaxial:
-        return np.ones(size, dtype=bool)
-    z = [np.asarray(v, dtype=np.int64) for v in coaxial]
-    a = [np.asarray(v, dtype=np.int64) for v in coefficients]
-    if phased:
-        return np.logical_and.reduce([zj % n == 0 for zj in z])
-    if len(z) == 1:
-        return np.ones(size, dtype=bool)
-    if len(z) == 2:
-        return (a[1] * z[0] - a[0] * z[1]) % (n * np.gcd(a[0], a[1])) == 0
-    pairwise = np.logical_and.reduce([assembles([z[0], zj], [a[0], aj], n)
-                                      for zj, aj in zip(z[1:], a[1:])])
-    found = np.zeros(size, dtype=bool)
-    if not pairwise.any():
-        return found
-    index = np.flatnonzero(pairwise)
-    found[index] = _search_turn([v[index] for v in z], [v[index] for v in a], n)
-    return found
-
-
-def _search_turn(z: list[np.ndarray], a: list[np.ndarray], n: int) -> np.ndarray:
-    """Three or more meshes: try ``t = (m - z_1/n) / a_1`` for ``m = 0 .. |a_1| - 1``."""
-    size = len(z[0])
-    bound = np.abs(a[0])
-    found = np.zeros(size, dtype=bool)
-    modulus = np.abs(n * a[0])
-    for m in range(int(bound.max(initial=0))):
-        fits = m < bound
-        for zj, aj in zip(z[1:], a[1:]):
-            fits &= (zj * a[0] + aj * (n * m - z[0])) % modulus == 0
-        found |= fits
-    return found
-
-
-def neighbours_clear(teeth: np.ndarray, centre: np.ndarray, planets: int) -> np.ndarray:
-    """Tip circles of adjacent planets clear: ``z + 2 < D sin(pi/n)`` (``D`` in
-    half-modules, so ``D sin(pi/n)`` is the distance between neighbouring axes in modules).
-
-    >>> bool(neighbours_clear(np.array(30), np.array(60), 3))   # 32 < 51.96
-    True
-    """
-    if planets < 2:
-        return np.ones(np.shape(teeth), dtype=bool)
-    return teeth + 2 < centre * np.sin(np.pi / planets)

@@ -1,0 +1,180 @@
+"""The geometric conditions of a planetary set: coaxiality, equal-spacing assembly,
+neighbouring planets' clearance, rack-cut undercut.
+
+One copy of these conditions, vectorised with numpy (an array of tooth numbers gives an
+array of answers): the tooth-number synthesis filters whole grids with them
+(:mod:`powergraph.analyses.synthesis.teeth`), and the model's feasibility caveats check one
+train with them (:mod:`powergraph.model.feasibility`, docs/feasibility.md).
+
+Units: a centre distance ``D`` counted in teeth is in **half-modules** (``z_sun + z_planet``
+for a sun mesh, ``z_ring - z_planet`` for a ring mesh: one module, no profile shift).
+
+Examples
+--------
+Sun 12, planet 30, ring 72 with three planets: coaxial (12 + 30 = 72 − 30), assembles
+((12 + 72)/3 = 28) and the tips clear (32 < 42 sin 60° = 36.4):
+
+>>> import numpy as np
+>>> one = lambda v: np.array([v])
+>>> bool(assembles([one(12), one(72)], [one(-30), one(30)], 3)[0])
+True
+>>> bool(neighbours_clear(np.array(30), np.array(42), 3))
+True
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Sequence
+
+import numpy as np
+
+
+def centre_distance(central: Any, planet: Any, internal: bool) -> Any:
+    """Centre distance of a planet gear meshing a central gear, in half-modules:
+    ``z_sun + z_planet`` (external central gear) or ``z_ring - z_planet`` (internal).
+
+    >>> centre_distance(24, 24, False), centre_distance(72, 24, True)
+    (48, 48)
+    """
+    return central - planet if internal else central + planet
+
+
+def assembles(coaxial: list[np.ndarray], coefficients: list[np.ndarray], planets: int,
+              phased: bool = False) -> np.ndarray:
+    """Can ``planets`` identical planet clusters be assembled at equal spacing?
+
+    Turn the whole train by ``theta = 2 pi / n``: the carrier looks the same, and a copy
+    fits the next place if turning the cluster's planets about their own axes (by ``t``
+    times a fixed vector, the one degree of freedom the cluster has with its carrier held)
+    brings every coaxial gear ``j`` back onto its own teeth:
+    ``z_j / n + a_j t`` is an integer for every coaxial mesh ``j``, where ``a_j`` is
+    ``-z_pj`` for a sun, ``+z_pj`` for a ring (``z_pj`` the planet gear meshing it), times
+    the cluster's speed ratio for a planet reached through planet-planet meshes (scaled to
+    integers, :func:`relative_turns`). One mesh always fits; two give the closed form
+    ``(a_2 z_1 - a_1 z_2) = 0 mod n gcd(a_1, a_2)`` — for a simple planet
+    ``(z_s + z_r) / n`` whole, for a stepped one ``(z_s z_p2 + z_r z_p1) / (n gcd(z_p1, z_p2))``;
+    more are searched over ``t = (m - z_1/n) / a_1``, ``m = 0 .. |a_1| - 1``. A ``phased``
+    cluster (a crank carrying a disc, identical in every copy) cannot turn: ``t = 0`` and
+    every ``z_j / n`` must be whole.
+
+    >>> ones = lambda v: np.array([v])
+    >>> bool(assembles([ones(12), ones(72)], [ones(-30), ones(30)], 3)[0])   # (12+72)/3
+    True
+    >>> bool(assembles([ones(13), ones(72)], [ones(-30), ones(30)], 3)[0])
+    False
+    """
+    n = planets
+    size = len(coaxial[0]) if coaxial else 0
+    if n <= 1 or not coaxial:
+        return np.ones(size, dtype=bool)
+    z = [np.asarray(v, dtype=np.int64) for v in coaxial]
+    a = [np.asarray(v, dtype=np.int64) for v in coefficients]
+    if phased:
+        return np.logical_and.reduce([zj % n == 0 for zj in z])
+    if len(z) == 1:
+        return np.ones(size, dtype=bool)
+    if len(z) == 2:
+        return (a[1] * z[0] - a[0] * z[1]) % (n * np.gcd(a[0], a[1])) == 0
+    pairwise = np.logical_and.reduce([assembles([z[0], zj], [a[0], aj], n)
+                                      for zj, aj in zip(z[1:], a[1:])])
+    found = np.zeros(size, dtype=bool)
+    if not pairwise.any():
+        return found
+    index = np.flatnonzero(pairwise)
+    found[index] = _search_turn([v[index] for v in z], [v[index] for v in a], n)
+    return found
+
+
+def _search_turn(z: list[np.ndarray], a: list[np.ndarray], n: int) -> np.ndarray:
+    """Three or more meshes: try ``t = (m - z_1/n) / a_1`` for ``m = 0 .. |a_1| - 1``."""
+    size = len(z[0])
+    bound = np.abs(a[0])
+    found = np.zeros(size, dtype=bool)
+    modulus = np.abs(n * a[0])
+    for m in range(int(bound.max(initial=0))):
+        fits = m < bound
+        for zj, aj in zip(z[1:], a[1:]):
+            fits &= (zj * a[0] + aj * (n * m - z[0])) % modulus == 0
+        found |= fits
+    return found
+
+
+def relative_turns(first: Any, pp_meshes: Sequence[tuple[Any, Any, Any, Any]]
+                   ) -> dict[Any, tuple[Any, Any]]:
+    """How far each planet of a cluster turns about its axis when ``first`` turns by one,
+    the carrier held: ``{planet: (num, den)}`` (integers, or integer arrays).
+
+    ``pp_meshes`` lists the cluster's planet-planet meshes as ``(p, q, z_p, z_q)`` (planet
+    ``p``'s gear of ``z_p`` teeth meshing planet ``q``'s of ``z_q``, external):
+    ``z_p dθ_p = -z_q dθ_q``. Planets not reached are left out.
+
+    >>> relative_turns("a", [("a", "b", 15, 20)])        # b turns -15/20 of a
+    {'a': (1, 1), 'b': (-15, 20)}
+    """
+    turns = {first: (1, 1)}
+    changed = True
+    while changed:
+        changed = False
+        for p, q, zp, zq in pp_meshes:
+            for (a, za), (b, zb) in (((p, zp), (q, zq)), ((q, zq), (p, zp))):
+                if a in turns and b not in turns:
+                    num, den = turns[a]
+                    turns[b] = (-num * za, den * zb)
+                    changed = True
+    return turns
+
+
+def neighbours_clear(teeth: np.ndarray, centre: np.ndarray, planets: int,
+                     tip: float = 2.0) -> np.ndarray:
+    """Tip circles of adjacent planets clear: ``z + tip < D sin(pi/n)`` (``D`` in
+    half-modules, so ``D sin(pi/n)`` is the distance between neighbouring axes in modules,
+    and ``z + tip`` the tip diameter in modules: ``tip = 2 h_a*`` for an unshifted gear).
+
+    The same condition in millimetres: ``d_a < 2 a sin(pi/n)``, ``a`` the centre distance.
+
+    >>> bool(neighbours_clear(np.array(30), np.array(60), 3))   # 32 < 51.96
+    True
+    """
+    if planets < 2:
+        return np.ones(np.shape(teeth), dtype=bool)
+    return teeth + tip < centre * np.sin(np.pi / planets)
+
+
+def undercut_limit(pressure_angle_deg: float = 20.0, shift: float = 0.0,
+                   addendum: float = 1.0, helix_angle_deg: float = 0.0) -> float:
+    """Fewest teeth an external gear cut by a rack can have without undercut:
+    ``2 (h_a* - x) cos β / sin² α_t`` (``α_t`` the transverse pressure angle; for a spur
+    gear ``2 (1 - x) / sin² α``, 17.1 at 20° without shift).
+
+    >>> round(undercut_limit(20.0), 2), round(undercut_limit(20.0, shift=0.3), 2)
+    (17.1, 11.97)
+    """
+    beta = math.radians(helix_angle_deg)
+    alpha_t = math.atan(math.tan(math.radians(pressure_angle_deg)) / math.cos(beta))
+    return 2.0 * (addendum - shift) * math.cos(beta) / math.sin(alpha_t) ** 2
+
+
+def working_centre_distance(teeth_1: int, teeth_2: int, internal: bool, module: float,
+                            pressure_angle_deg: float = 20.0, helix_angle_deg: float = 0.0,
+                            shift_1: float = 0.0, shift_2: float = 0.0) -> float:
+    """Working centre distance of an involute pair (mm; DIN 3960): the reference
+    ``a = m_t (z_2 ± z_1) / 2`` times ``cos α_t / cos α_w``, where
+    ``inv α_w = inv α_t + 2 tan α_n (x_1 ± x_2) / (z_1 ± z_2)`` (− for an internal gear 2).
+
+    >>> working_centre_distance(20, 40, False, 2.0)                 # m (z1 + z2) / 2
+    60.0
+    >>> round(working_centre_distance(15, 48, True, 1.0, shift_1=0.2, shift_2=0.874), 3)
+    17.1
+    """
+    from powergraph.gears.involute import involute, inverse_involute
+
+    sign = -1.0 if internal else 1.0
+    beta = math.radians(helix_angle_deg)
+    alpha_n = math.radians(pressure_angle_deg)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
+    reference = module / math.cos(beta) * abs(teeth_2 + sign * teeth_1) / 2
+    shifts = shift_1 + sign * shift_2
+    if shifts == 0:
+        return reference
+    inv_w = involute(alpha_t) + 2 * math.tan(alpha_n) * shifts / (teeth_1 + sign * teeth_2)
+    return reference * math.cos(alpha_t) / math.cos(inverse_involute(inv_w))

@@ -1,0 +1,318 @@
+"""Can the train be built? The geometric feasibility of its planetary sets, as caveats.
+
+A model can be valid and solvable and still describe gears that cannot be put together:
+planets that cannot share the axis of their sun and ring, that cannot be assembled at equal
+spacing, that collide with their neighbours; a ring gear not marked ``internal`` (its
+ratio then has the wrong sign); a planet meshing with and without its carrier; an
+undercut pinion. :func:`feasibility_caveats` finds them; validation adds them to
+``Model.warnings`` (the answer of a solve stands, the designer should know), ``powergraph
+check`` prints them and ``--strict`` refuses them. The conditions themselves are those of
+:mod:`powergraph.gears.planetary` (one copy, shared with the tooth-number synthesis).
+
+How a planetary set is read from the graph (docs/feasibility.md): the meshes on one
+carrier (one rigid body) form a set; a **planet** is a gear with ``count`` > 1 or the
+external partner of an internal gear, with its rigid body (the steps of a stepped
+planet); the other gears of the set are **central** (suns and rings, coaxial with the
+carrier). A planet joined to an output by a ``coupling`` (a K-H-V or cycloid stage), a
+carrier with ``count`` > 1 (a crank) and meshes given by ``ratio`` (bevel gears) are not
+2K-H planets and are left alone.
+
+Examples
+--------
+>>> from powergraph.model import model_from_dict
+>>> doc = {"name": "2K-H", "components": {0: {"role": "frame"}, "s": {"teeth": 23},
+...        "p": {"teeth": 24, "count": 3}, "r": {"teeth": 72, "internal": True}, "c": {}},
+...        "links": [{"type": "mesh", "between": ["s", "p"], "carrier": "c"},
+...                  {"type": "mesh", "between": ["p", "r"], "carrier": "c"},
+...                  {"type": "fixed", "between": ["r", 0]}],
+...        "ports": [{"component": "s", "role": "input"}, {"component": "c", "role": "output"}]}
+>>> [c.code for c in model_from_dict(doc).warnings]
+['coaxiality', 'assembly']
+"""
+from __future__ import annotations
+
+import math
+from collections import defaultdict
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from powergraph.errors import Caveat
+from powergraph.gears import planetary
+from powergraph.model.feasibility_axes import coaxiality, gear_module, mesh_geometry
+
+
+@dataclass
+class PlanetarySet:
+    """The meshes on one carrier body, split into planets and central gears."""
+
+    carrier: str
+    meshes: list = field(default_factory=list)
+    planets: set = field(default_factory=set)      # planet bodies
+    central: set = field(default_factory=set)      # central gear ids
+    by_body: dict = field(default_factory=dict)    # planet body -> its meshes in the set
+
+
+def feasibility_caveats(model: Any) -> tuple[Caveat, ...]:
+    """Every feasibility caveat of ``model`` (a :class:`~powergraph.model.spec.Model`).
+
+    Linear in the size of the model; nothing is checked where the model gives too little
+    to decide (a mesh by ``ratio``, a planet without a central mesh).
+
+    Examples
+    --------
+    See the module's docstring; docs/feasibility.md lists the rules.
+    """
+    caveats: list[Caveat] = []
+    sets = _planetary_sets(model)
+    phased = {model.body_of[link.carrier] for link in model.meshes}   # bodies carrying a mesh
+    for pset in sets.values():
+        caveats += _set_caveats(model, pset, phased)
+    caveats += _planet_carrier(model, sets)
+    caveats += _undercut(model)
+    return tuple(caveats)
+
+
+# --- reading the sets ---------------------------------------------------------------------
+def _planetary_sets(model: Any) -> dict[str, PlanetarySet]:
+    """Per carrier body, the set of meshes and its planet bodies (see the module)."""
+    coupled = {model.body_of[x] for link in model.links if link.type == "coupling"
+               for x in link.between}
+    sets: dict[str, PlanetarySet] = {}
+    for link in model.meshes:
+        body = model.body_of[link.carrier]
+        if model.components[link.carrier].count > 1:
+            continue                                     # a crank: eccentric, not 2K-H
+        sets.setdefault(body, PlanetarySet(body)).meshes.append(link)
+    for pset in sets.values():
+        for link in pset.meshes:
+            a, b = (model.components[x] for x in link.between)
+            for gear, other in ((a, b), (b, a)):
+                if gear.count > 1 or (other.internal and not gear.internal):
+                    pset.planets.add(model.body_of[gear.id])
+        pset.planets -= coupled
+        pset.central = {x for link in pset.meshes for x in link.between
+                        if model.body_of[x] not in pset.planets
+                        and model.body_of[x] not in coupled}
+        for link in pset.meshes:
+            for body in {model.body_of[x] for x in link.between} & pset.planets:
+                pset.by_body.setdefault(body, []).append(link)
+    held = model.frame_body       # a moving carrier's set first: a planet's home (below)
+    return dict(sorted(((body, s) for body, s in sets.items() if s.planets),
+                       key=lambda item: item[0] == held))
+
+
+def _toothed(link: Any, model: Any) -> bool:
+    return link.ratio is None and all(model.components[x].teeth for x in link.between)
+
+
+def _central_meshes(model: Any, pset: PlanetarySet, body: str) -> list[tuple]:
+    """``(link, central gear, planet gear)`` of the planet body's meshes with central gears."""
+    out = []
+    for link in pset.by_body.get(body, ()):
+        if not _toothed(link, model):
+            continue
+        a, b = link.between
+        for gear, other in ((a, b), (b, a)):
+            if model.body_of[gear] == body and other in pset.central:
+                out.append((link, model.components[other], model.components[gear]))
+    return out
+
+
+def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
+    caveats: list[Caveat] = []
+    wrong_rings: set[str] = set()
+    for body in sorted(pset.planets):
+        meshes = _central_meshes(model, pset, body)
+        found, teeth, mm = coaxiality(meshes)
+        caveats += found
+        if any(c.code == "ring-not-internal" for c in found):
+            wrong_rings.add(body)
+        if teeth is not None and not found:
+            caveats += _clearance(model, pset, body, teeth, mm)
+    for cluster in _clusters(model, pset):
+        if not wrong_rings.intersection(cluster):
+            caveats += _assembly(model, pset, cluster, bool(phased.intersection(cluster)))
+    return caveats
+
+
+# --- neighbours and assembly --------------------------------------------------------------
+def _planet_gears(model: Any, pset: PlanetarySet, body: str) -> list:
+    gears = {x for link in pset.by_body.get(body, ()) for x in link.between
+             if model.body_of[x] == body}
+    return [model.components[x] for x in sorted(gears)]
+
+
+def _clearance(model: Any, pset: PlanetarySet, body: str, teeth: float,
+               mm: float | None) -> list[Caveat]:
+    """Tip circles of neighbouring planets clear: ``d_a < 2 a sin(π/n)`` — in mm when the
+    centre distance and the gear's module are known, else in modules (``z + 2 h_a*``)."""
+    out = []
+    for gear in _planet_gears(model, pset, body):
+        n = gear.count
+        if n < 2 or not gear.teeth:
+            continue
+        module, tip = _tip(gear, pset.by_body.get(body, ()), model)
+        if mm is not None and module is not None:
+            size, unit, span = module, "mm", 2 * mm
+        else:
+            size, unit, span = 1.0, "modules", teeth
+        diameter = size * (gear.teeth + 2 * tip)
+        if planetary.neighbours_clear(np.array(size * gear.teeth), np.array(span), n,
+                                      2 * tip * size):
+            continue
+        room = span * math.sin(math.pi / n)
+        centre = f"{mm:.4g} mm" if unit == "mm" else f"{teeth:g} half-modules"
+        out.append(Caveat(
+            f"{n} planets of {gear.teeth} teeth on a centre distance of {centre}: tip "
+            f"diameter {diameter:.4g} {unit} ≥ 2·a·sin(π/{n}) = {room:.4g} {unit} between "
+            "neighbouring axes: neighbouring planets collide",
+            f"components.{gear.raw_id}.count", "planet-clearance"))
+    return out
+
+
+def _tip(gear: Any, links: Any, model: Any) -> tuple[float | None, float]:
+    """Module and ``h_a* + x`` of ``gear``: from a mesh geometry that names it, else its
+    own geometry's module and an unshifted addendum of one module."""
+    for link in links:
+        g = mesh_geometry(link)
+        if g is not None and gear.id in link.between:
+            first = _pinion(link, model) == gear.id
+            return g.module, g.addendum + (g.shift_1 if first else g.shift_2)
+    return gear_module(gear), 1.0
+
+
+def _pinion(link: Any, model: Any) -> str:
+    """The gear a mesh geometry names first: the external one of an internal pair, the
+    link's first gear otherwise."""
+    return sorted(link.between, key=lambda x: model.components[x].internal)[0]
+
+
+def _clusters(model: Any, pset: PlanetarySet) -> list[list[str]]:
+    """Planet bodies joined by planet-planet meshes (each body alone otherwise)."""
+    parent = {body: body for body in pset.planets}
+
+    def find(x: str) -> str:
+        while parent[x] != x:
+            x = parent[x]
+        return x
+
+    for link in pset.meshes:
+        a, b = (model.body_of[x] for x in link.between)
+        if a in parent and b in parent:
+            parent[find(a)] = find(b)
+    groups: dict[str, list[str]] = defaultdict(list)
+    for body in sorted(pset.planets):
+        groups[find(body)].append(body)
+    return list(groups.values())
+
+
+def _assembly(model: Any, pset: PlanetarySet, cluster: list[str], phased: bool
+              ) -> list[Caveat]:
+    """Equal-spacing assembly of one planet cluster (:func:`planetary.assembles`)."""
+    gears = [g for body in cluster for g in _planet_gears(model, pset, body)]
+    counts = {g.count for g in gears}
+    if len(counts) != 1 or not all(g.teeth for g in gears):
+        return []
+    (n,) = counts
+    members = set(cluster)
+    links = {link.index: link for body in cluster for link in pset.by_body.get(body, ())}
+    pp = [(model.body_of[a], model.body_of[b], model.components[a].teeth,
+           model.components[b].teeth) for link in links.values() if _toothed(link, model)
+          for a, b in [link.between]
+          if model.body_of[a] in members and model.body_of[b] in members]
+    turns = planetary.relative_turns(cluster[0], pp)
+    if len(turns) != len(cluster):
+        return []
+    common = math.prod(den for _, den in turns.values())
+    central, coefficients = [], []
+    for body in cluster:
+        num, den = turns[body]
+        for link, gear, planet in _central_meshes(model, pset, body):
+            sign = 1 if gear.internal else -1
+            central.append(gear)
+            coefficients.append(sign * planet.teeth * num * (common // den))
+    if len(central) < (1 if phased else 2):
+        return []
+    z = [np.array([g.teeth]) for g in central]
+    a = [np.array([c]) for c in coefficients]
+    if planetary.assembles(z, a, n, phased)[0]:
+        return []
+    planet = next(g for g in gears if g.count == n)
+    return [Caveat(_assembly_words(central, coefficients, n, phased),
+                   f"components.{planet.raw_id}.count", "assembly")]
+
+
+def _assembly_words(central: list, coefficients: list[int], n: int, phased: bool) -> str:
+    names = ", ".join(f"{'ring' if g.internal else 'sun'} {g.id} ({g.teeth})" for g in central)
+    tail = f"{n} planets cannot be assembled at equal spacing"
+    if phased:
+        bad = [g for g in central if g.teeth % n]
+        return (f"the planets carry another stage, so every copy is identical: "
+                + ", ".join(f"{g.teeth}/{n} = {g.teeth / n:.4g}" for g in bad)
+                + f" is not whole: {tail}")
+    if len(central) == 2:
+        (z1, z2), (a1, a2) = [g.teeth for g in central], coefficients
+        if a1 == -a2:                         # a simple planet between sun and ring
+            return f"({z1} + {z2})/{n} = {(z1 + z2) / n:.4g} is not whole ({names}): {tail}"
+        if a1 == a2:                          # a double planet between sun and ring
+            return f"({z2} − {z1})/{n} = {(z2 - z1) / n:.4g} is not whole ({names}): {tail}"
+        value = (a2 * z1 - a1 * z2) / (n * math.gcd(a1, a2))
+        return (f"({a2}·{z1} − ({a1})·{z2})/({n}·gcd({a1}, {a2})) = {value:.4g} is not whole "
+                f"({names}): {tail}")
+    return f"no turn of the planets fits every central gear ({names}) at once: {tail}"
+
+
+# --- carriers and undercut ----------------------------------------------------------------
+def _planet_carrier(model: Any, sets: dict[str, PlanetarySet]) -> list[Caveat]:
+    """A planet's gears mesh only on its own carrier (or on a body held with it). A
+    planet's home is its first set, a moving carrier's before the frame's."""
+    home: dict[str, tuple[str, Any]] = {}
+    for body, pset in sets.items():
+        for link in pset.meshes:
+            for x in link.between:
+                if model.body_of[x] in pset.planets:
+                    home.setdefault(model.body_of[x], (body, link))
+    out = []
+    for link in model.meshes:
+        carrier = model.body_of[link.carrier]
+        for x in link.between:
+            planet = model.body_of[x]
+            if planet in home and home[planet][0] != carrier:
+                other = home[planet][1]
+                out.append(Caveat(
+                    f"planet {x} meshes here on carrier {link.carrier}"
+                    f"{' (fixed axes)' if link.carrier == model.frame else ''} but on carrier "
+                    f"{other.carrier} in {other.path}: a planet's axis turns with its own "
+                    f"carrier; write carrier: {model.raw_id(other.carrier)}",
+                    f"{link.path}.carrier", "planet-carrier"))
+                break
+    return out
+
+
+def _undercut(model: Any) -> list[Caveat]:
+    """External gears of a mesh with a ``geometry`` block, cut by a rack: ``z`` below
+    ``2 (h_a* − x) cos β / sin² α_t`` teeth is undercut."""
+    out = []
+    for link in model.meshes:
+        g = mesh_geometry(link)
+        if g is None:
+            continue
+        first = _pinion(link, model)
+        second = link.between[1] if first == link.between[0] else link.between[0]
+        sides = [(first, g.teeth_1, g.shift_1)]
+        if not g.internal:
+            sides.append((second, g.teeth_2, g.shift_2))
+        for gear, z, x in sides:
+            limit = planetary.undercut_limit(g.pressure_angle_deg, x, g.addendum,
+                                             g.helix_angle_deg)
+            if z < limit:
+                need = g.addendum - z / planetary.undercut_limit(
+                    g.pressure_angle_deg, 0.0, 1.0, g.helix_angle_deg)
+                out.append(Caveat(
+                    f"gear {gear} ({z} teeth, shift {x:g}) is undercut when cut by a rack: "
+                    f"fewer than 2·(h_a* − x)·cos β/sin²α_t = {limit:.4g} teeth at "
+                    f"{g.pressure_angle_deg:g}°; give it a shift of at least {need:.3f}",
+                    f"{link.path}.geometry", "undercut"))
+    return out

@@ -1,0 +1,226 @@
+"""powergraph.model.feasibility: each rule on a set that breaks it (hand numbers in the
+test) and on one that does not; every bundled model is feasible (docs/feasibility.md)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from powergraph.model import load_model, model_from_dict
+
+MODELS = sorted((Path(__file__).resolve().parents[2] / "models").glob("*.yaml"))
+
+
+def simple(zs: int, zp: int, zr: int, n: int = 3, internal: bool = True,
+           sun_carrier: bool = True) -> dict:
+    """Sun s in, ring r fixed, carrier c out; ``n`` planets p."""
+    return {"name": "2K-H", "components": {
+                0: {"role": "frame"}, "s": {"teeth": zs}, "p": {"teeth": zp, "count": n},
+                "r": {"teeth": zr, "internal": internal}, "c": {}},
+            "links": [{"type": "mesh", "between": ["s", "p"],
+                       **({"carrier": "c"} if sun_carrier else {})},
+                      {"type": "mesh", "between": ["p", "r"], "carrier": "c"},
+                      {"type": "fixed", "between": ["r", 0]}],
+            "ports": [{"component": "s", "role": "input"},
+                      {"component": "c", "role": "output"}]}
+
+
+def stepped(zs: int, zp1: int, zp2: int, zr: int, n: int = 3) -> dict:
+    """models/planetary_stepped.yaml's layout: sun s on step p1, ring r on step p2."""
+    return {"name": "stepped", "components": {
+                0: {"role": "frame"}, "s": {"teeth": zs}, "p1": {"teeth": zp1, "count": n},
+                "p2": {"teeth": zp2, "count": n}, "r": {"teeth": zr, "internal": True},
+                "c": {}},
+            "links": [{"type": "mesh", "between": ["s", "p1"], "carrier": "c"},
+                      {"type": "mesh", "between": ["p2", "r"], "carrier": "c"},
+                      {"type": "fixed", "between": ["p1", "p2"]},
+                      {"type": "fixed", "between": ["r", 0]}],
+            "ports": [{"component": "s", "role": "input"},
+                      {"component": "c", "role": "output"}]}
+
+
+def double_planet(zs: int, za: int, zb: int, zr: int, n: int = 3) -> dict:
+    """models/planetary_double_planet.yaml's layout: s - a - b - r on carrier c."""
+    return {"name": "double", "components": {
+                0: {"role": "frame"}, "s": {"teeth": zs}, "a": {"teeth": za, "count": n},
+                "b": {"teeth": zb, "count": n}, "r": {"teeth": zr, "internal": True},
+                "c": {}},
+            "links": [{"type": "mesh", "between": ["s", "a"], "carrier": "c"},
+                      {"type": "mesh", "between": ["a", "b"], "carrier": "c"},
+                      {"type": "mesh", "between": ["b", "r"], "carrier": "c"},
+                      {"type": "fixed", "between": ["r", 0]}],
+            "ports": [{"component": "s", "role": "input"},
+                      {"component": "c", "role": "output"}]}
+
+
+def caveats(doc: dict) -> list[tuple[str, str, str]]:
+    return [(c.code, c.path, c.message) for c in model_from_dict(doc).warnings]
+
+
+def codes(doc: dict) -> list[str]:
+    return [code for code, _, _ in caveats(doc)]
+
+
+@pytest.mark.parametrize("path", MODELS, ids=[p.stem for p in MODELS])
+def test_every_bundled_model_is_feasible(path: Path) -> None:
+    assert load_model(path).warnings == ()
+
+
+# --- coaxiality ---------------------------------------------------------------------------
+def test_simple_set_off_axis_by_one_tooth() -> None:
+    # 23 + 2·24 = 71 ≠ 72 (and (23 + 72)/3 = 31.67: not assembled either)
+    code, path, message = caveats(simple(23, 24, 72))[0]
+    assert (code, path) == ("coaxiality", "links[0..1]")
+    assert message.startswith("sun 23 + 2 × planet 24 = 71 ≠ ring 72: the planets cannot "
+                              "share the axis of sun and ring")
+    assert codes(simple(23, 24, 72)) == ["coaxiality", "assembly"]
+    assert codes(simple(24, 24, 72)) == []          # 24 + 48 = 72, 96/3 = 32
+
+
+def test_stepped_planet_centre_distances() -> None:
+    # sun 18 + step 36 = 54 half-modules, ring 72 − step 20 = 52: off axis
+    code, path, message = caveats(stepped(18, 36, 20, 72))[0]
+    assert (code, path) == ("coaxiality", "links[0..1]")
+    assert "sun 18 + planet 36 = 54; ring 72 − planet 20 = 52" in message
+    assert codes(stepped(18, 36, 18, 72)) == []     # 54 = 72 − 18; models/planetary_stepped
+
+
+def test_shifted_meshes_compare_working_centre_distances() -> None:
+    # models/tuplin_256.yaml: 51 − 16 = 35 and 48 − 15 = 33 half-modules unshifted; its
+    # shifts bring both to 17.1 mm. Without them the set is off axis; with the second
+    # pair's ring shift 0.6 instead of 0.874 it is again (a smaller working distance).
+    tuplin = load_model(MODELS[[p.stem for p in MODELS].index("tuplin_256")])
+    assert tuplin.warnings == ()
+    import yaml
+    doc = yaml.safe_load(MODELS[[p.stem for p in MODELS].index("tuplin_256")].read_text())
+    bare = {**doc, "links": [{k: v for k, v in link.items() if k != "geometry"}
+                             for link in doc["links"]]}
+    code, path, message = caveats(bare)[0]
+    assert (code, path) == ("coaxiality", "links[0..1]")
+    assert "ring 51 − planet 16 = 35; ring 48 − planet 15 = 33" in message
+    doc["links"][1]["geometry"] = {"module": 1, "shifts": [0.2, 0.6]}
+    code, path, message = caveats(doc)[0]
+    assert (code, path) == ("coaxiality", "links[0..1]") and "17.1 mm" in message
+
+
+# --- assembly -----------------------------------------------------------------------------
+def test_simple_set_assembly() -> None:
+    # (24 + 72)/5 = 19.2: five planets do not fit at equal spacing; four do (96/4 = 24)
+    code, path, message = caveats(simple(24, 24, 72, n=5))[0]
+    assert (code, path) == ("assembly", "components.p.count")
+    assert message.startswith("(24 + 72)/5 = 19.2 is not whole")
+    assert codes(simple(24, 24, 72, n=4)) == []
+
+
+def test_stepped_set_assembly() -> None:
+    # (z_s z_p2 + z_r z_p1)/(n gcd(z_p1, z_p2)) = (18·18 + 72·36)/(n·18) = 162/n: whole
+    # for n = 3, 162/4 = 40.5 for n = 4 (whose tips still clear: 38 < 54 sin 45° = 38.18)
+    assert codes(stepped(18, 36, 18, 72, n=3)) == []
+    code, path, message = caveats(stepped(18, 36, 18, 72, n=4))[0]
+    assert (code, path) == ("assembly", "components.p1.count")
+    assert "= 40.5 is not whole" in message
+
+
+def test_double_planet_assembly() -> None:
+    # a double planet turns its outer planet the other way: (z_r − z_s)/n whole;
+    # (75 − 30)/3 = 15 (models/planetary_double_planet.yaml), (75 − 30)/4 = 11.25
+    assert codes(double_planet(30, 15, 15, 75, n=3)) == []
+    code, path, message = caveats(double_planet(30, 15, 15, 75, n=4))[0]
+    assert (code, path) == ("assembly", "components.a.count")
+    assert message.startswith("(75 − 30)/4 = 11.25 is not whole")
+
+
+def test_planets_carrying_a_stage_are_phased() -> None:
+    # RV-40E: the planets are cranks carrying the discs, every copy identical: z_sun/n
+    # whole, 12/2 = 6; a 13-tooth sun (13/2 = 6.5) cannot be assembled
+    rv = load_model(MODELS[[p.stem for p in MODELS].index("rv40e")])
+    assert rv.warnings == ()
+    import yaml
+    doc = yaml.safe_load(MODELS[[p.stem for p in MODELS].index("rv40e")].read_text())
+    doc["components"][1] = {"teeth": 13}
+    code, path, message = caveats(doc)[0]
+    assert (code, path) == ("assembly", "components.2.count") and "13/2 = 6.5" in message
+
+
+# --- neighbours ---------------------------------------------------------------------------
+def test_neighbouring_planets_collide() -> None:
+    # 12/30/72, a = 21 modules: 4 planets' axes 2·21·sin 45° = 29.70 apart < tip 32
+    code, path, message = caveats(simple(12, 30, 72, n=4))[0]
+    assert (code, path) == ("planet-clearance", "components.p.count")
+    assert "tip diameter 32 modules ≥ 2·a·sin(π/4) = 29.7 modules" in message
+    assert codes(simple(12, 30, 72, n=3)) == []     # 2·21·sin 60° = 36.37 > 32
+
+
+def test_neighbouring_planets_in_mm_with_a_module() -> None:
+    # 18/27/72 at module 2 mm: a = 2·(18 + 27)/2 = 45 mm, tip d_a = 2·(27 + 2) = 58 mm;
+    # 5 planets: 2·45·sin 36° = 52.90 mm < 58 (and (18 + 72)/5 = 18 assembles); 3 planets:
+    # 2·45·sin 60° = 77.94 mm clears (and 90/3 = 30)
+    doc = simple(18, 27, 72, n=5)
+    for link in doc["links"][:2]:
+        link["geometry"] = {"module": 2}
+    code, path, message = caveats(doc)[0]
+    assert (code, path) == ("planet-clearance", "components.p.count")
+    assert "tip diameter 58 mm ≥ 2·a·sin(π/5) = 52.9 mm" in message
+    doc["components"]["p"]["count"] = 3
+    assert codes(doc) == []
+
+
+# --- internal gears and carriers ----------------------------------------------------------
+def test_a_ring_not_marked_internal() -> None:
+    # 72 external: sun 24 + 24 = 48 but 72 + 24 = 96; as a ring 72 − 24 = 48 fits
+    found = caveats(simple(24, 24, 72, internal=False))
+    assert [(c, p) for c, p, _ in found] == [("ring-not-internal", "components.r")]
+    assert "72 − 24 = 48" in found[0][2]
+    # 74 external: as a ring 74 − 24 = 50 ≠ 48, but its pitch radius (74 half-modules)
+    # reaches beyond the planets' (48 + 24 = 72): a ring all the same (off axis once
+    # internal); a 30-tooth gear (30 − 24 = 6 < 48) is no ring, only off axis
+    found = caveats(simple(24, 24, 74, internal=False))
+    assert [(c, p) for c, p, _ in found] == [("ring-not-internal", "components.r")]
+    assert "surrounds the planets' (48 + 24 = 72)" in found[0][2]
+    assert codes(simple(24, 24, 30, internal=False))[0] == "coaxiality"
+
+
+def test_a_planet_meshing_with_and_without_its_carrier() -> None:
+    code, path, message = caveats(simple(24, 24, 72, sun_carrier=False))[0]
+    assert (code, path) == ("planet-carrier", "links[0].carrier")
+    assert "write carrier: c" in message
+
+
+def test_a_held_carrier_is_the_frame_for_its_planets() -> None:
+    # the carrier fixed to the frame: the sun mesh on the frame is on the same body
+    doc = simple(24, 24, 72, sun_carrier=False)
+    doc["links"][2] = {"type": "fixed", "between": ["c", 0]}
+    doc["ports"][1] = {"component": "r", "role": "output"}
+    assert codes(doc) == []
+
+
+# --- undercut -----------------------------------------------------------------------------
+def pair(geometry: dict) -> dict:
+    return {"name": "pair", "components": {0: {"role": "frame"}, 1: {"teeth": 14},
+                                           2: {"teeth": 14}},
+            "links": [{"type": "mesh", "between": [1, 2], "geometry": geometry}],
+            "ports": [{"component": 1, "role": "input"}, {"component": 2, "role": "output"}]}
+
+
+def test_undercut_needs_a_shift() -> None:
+    # 14 < 2/sin²20° = 17.10: both unshifted 14-tooth gears are undercut; a shift of
+    # 1 − 14 sin²20°/2 = 0.181 is needed. With x = 0.2: 2·0.8/sin²20° = 13.68 < 14.
+    found = caveats(pair({"module": 2}))
+    assert [(c, p) for c, p, _ in found] == [("undercut", "links[0].geometry")] * 2
+    assert "fewer than 2·(h_a* − x)·cos β/sin²α_t = 17.1 teeth" in found[0][2]
+    assert "at least 0.181" in found[0][2]
+    assert codes(pair({"module": 2, "shifts": [0.2, 0.2]})) == []
+
+
+def test_khv_stages_are_not_2kh_sets() -> None:
+    # planets with a coupling (K-H-V) are left alone: two 40-tooth planets in a 45 ring
+    # would "collide" as 2K-H planets (tip 42 > 5 sin 90°, a = 45 − 40 half-modules).
+    # (Bevel gears, meshes by ratio: models/bevel_differential.yaml, bundled-model test.)
+    doc = {"name": "khv", "components": {0: {"role": "frame"}, "p": {"teeth": 40, "count": 2},
+                                         "r": {"teeth": 45, "internal": True}, "out": {}},
+           "links": [{"type": "mesh", "between": ["p", "r"], "carrier": "H"},
+                     {"type": "fixed", "between": ["r", 0]},
+                     {"type": "coupling", "between": ["p", "out"]}],
+           "ports": [{"component": "H", "role": "input"}, {"component": "out", "role": "output"}]}
+    doc["components"]["H"] = {}
+    assert codes(doc) == []
