@@ -21,13 +21,14 @@ from functools import lru_cache
 
 from powergraph.errors import ModelError
 from powergraph.model.yaml_loader import brief
+from powergraph.units_si import RAD_S_PER_RPM
 
 #: SI unit of each kind of quantity a model may carry.
 SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm"}
 
 # Factor to the SI unit of the kind (mm for lengths, as the geometry tables use).
 _FAST = {
-    "speed": {"rad/s": 1.0, "rpm": 2 * math.pi / 60, "rev/min": 2 * math.pi / 60,
+    "speed": {"rad/s": 1.0, "rpm": RAD_S_PER_RPM, "rev/min": RAD_S_PER_RPM,
               "1/s": 1.0, "rad/min": 1 / 60, "deg/s": math.pi / 180, "rps": 2 * math.pi,
               "rev/s": 2 * math.pi},
     "power": {},  # case matters (mW vs MW): see _CASE_SENSITIVE_POWER
