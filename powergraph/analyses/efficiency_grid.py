@@ -40,7 +40,8 @@ from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.bearings import bearing_torque, relative_speed
-from powergraph.statics.directions import driver_codes, own_scales, relative_speeds
+from powergraph.statics.directions import (driver_codes, factors_for, own_scales,
+                                           relative_speeds)
 from powergraph.statics.equilibrium import loads_of
 from powergraph.statics.friction import MAX_PASSES, friction_meshes
 from powergraph.units_si import RAD_S_PER_RPM
@@ -182,7 +183,7 @@ class _Grid:
 
     def factors(self, eta: np.ndarray) -> np.ndarray:
         """``(P, E)`` element factors: η where gear a drives, 1/η where b drives, else 1."""
-        return np.where(self.codes > 0, eta, np.where(self.codes < 0, 1.0 / eta, 1.0))
+        return factors_for(self.codes, eta)
 
     def balance(self, factors: np.ndarray, extra: np.ndarray) -> tuple[np.ndarray, ...]:
         """The stacked torque balances ``(P, B, B)``, their right-hand sides and solutions."""
