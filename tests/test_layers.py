@@ -14,16 +14,22 @@ Layers, earliest first (docs/architecture.md)::
     5 plot        powergraph.plot.*             (including the pure layout, plot.layout)
     6 cli         powergraph.cli.*
 
-Only imports that run when a module is imported count: statements of the module body
-(also inside ``try``/``if``), but not ``if TYPE_CHECKING:`` blocks nor imports inside
-functions, which are lazy. Importing ``a.b.c`` also runs the packages ``a`` and ``a.b``
-first; those parent-package runs are not edges (each package's own imports are). The one
-sanctioned lazy crossing is a result's ``plot()`` method importing its drawing function
-from :mod:`powergraph.plot`.
+The import graph holds the imports that run when a module is imported: statements of the
+module body (also inside ``try``/``if``), but not ``if TYPE_CHECKING:`` blocks nor imports
+inside functions, which are lazy. Importing ``a.b.c`` also runs the packages ``a`` and
+``a.b`` first; those parent-package runs are not edges (each package's own imports are).
+That graph must follow the layers and have no cycle.
+
+Lazy imports (inside functions) must follow the layers too, but for an explicit allow-list
+(``LAZY_ALLOWED``): a result's ``plot()`` method importing its drawing function from
+:mod:`powergraph.plot`, the package facade's lazy attributes, and the command line (the
+last layer). So no module of model, kinematics, statics or gears reaches the analyses,
+the methods, the plots or the command line, even lazily.
 """
 from __future__ import annotations
 
 import ast
+from functools import lru_cache
 from pathlib import Path
 
 import networkx as nx
@@ -57,6 +63,11 @@ def module_files() -> dict[str, Path]:
     return out
 
 
+@lru_cache(maxsize=None)
+def _parsed(path: Path) -> ast.Module:
+    return ast.parse(path.read_text(encoding="utf-8"), str(path))
+
+
 def _is_type_checking(test: ast.expr) -> bool:
     return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or \
            (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
@@ -81,7 +92,7 @@ def _import_time_statements(body: list[ast.stmt]):
 
 def imports_of(module: str, path: Path, known: set[str]) -> set[str]:
     """powergraph modules that ``module`` imports at import time."""
-    tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+    tree = _parsed(path)
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found = set()
     for node in _import_time_statements(tree.body):
@@ -100,6 +111,69 @@ def imports_of(module: str, path: Path, known: set[str]) -> set[str]:
         found |= {name for name in names if name in known}
     found.discard(module)
     return found
+
+
+def _absolute(node: ast.ImportFrom | ast.Import, package: str) -> list[str]:
+    """The dotted names an import statement names (the module and, for ``from``, each
+    ``module.name``)."""
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    base = node.module or ""
+    if node.level:
+        anchor = package.split(".")[:len(package.split(".")) - node.level + 1]
+        base = ".".join(anchor + ([base] if base else []))
+    return [base] + [f"{base}.{alias.name}" for alias in node.names]
+
+
+def lazy_imports_of(module: str, path: Path, known: set[str]) -> set[tuple[str, str]]:
+    """(function, imported module) of every powergraph import inside a function of
+    ``module``; the function is its dotted name (``Class.method``, ``f.inner``)."""
+    tree = _parsed(path)
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = set()
+
+    def walk(node: ast.AST, scope: str, in_function: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.Import, ast.ImportFrom)) and in_function:
+                found.update((scope, name) for name in _absolute(child, package)
+                             if name in known and name != module)
+            named = isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+            inner = f"{scope}.{child.name}".lstrip(".") if named else scope
+            walk(child, inner, in_function or isinstance(
+                child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
+
+    walk(tree, "", False)
+    return found
+
+
+#: Lazy imports of a later layer that are allowed: (importing module or package, function
+#: name or "" for any, imported module prefix). A result's ``plot()`` delegates to its
+#: drawing function; the package facade resolves its lazy attributes.
+LAZY_ALLOWED = (("powergraph", "plot", "powergraph.plot"),
+                ("powergraph", "__getattr__", "powergraph"))
+
+
+def _lazy_allowed(module: str, function: str, target: str) -> bool:
+    last = function.rpartition(".")[2]
+    for where, name, what in LAZY_ALLOWED:
+        if (where == "powergraph" and name == "__getattr__") and module != "powergraph":
+            continue                             # only the facade's own __getattr__
+        if (module == where or module.startswith(where + ".")) and last == name \
+                and (target == what or target.startswith(what + ".")):
+            return True
+    return False
+
+
+def wrong_lazy_imports() -> list[str]:
+    """Every import inside a function that reaches a later layer and is not allowed."""
+    files = module_files()
+    known = set(files)
+    return sorted(f"{module}.{function} (layer {layer_of(module)}) imports {target} "
+                  f"(layer {layer_of(target)})"
+                  for module, path in files.items()
+                  for function, target in lazy_imports_of(module, path, known)
+                  if layer_of(target) > layer_of(module)
+                  and not _lazy_allowed(module, function, target))
 
 
 def import_graph() -> nx.DiGraph:
@@ -153,3 +227,54 @@ def test_import_graph_has_no_cycles(graph) -> None:
     cycles = list(nx.simple_cycles(graph))
     assert cycles == []
     assert nx.is_directed_acyclic_graph(graph)
+
+
+def test_the_lazy_checker_sees_imports_inside_functions(tmp_path) -> None:
+    source = ("def f():\n    from powergraph.analyses import sweep\n"
+              "class R:\n    def plot(self):\n        from powergraph.plot import power_flow\n"
+              "    def g(self):\n        import powergraph.cli.main\n"
+              "from powergraph.errors import ModelError\n")
+    path = tmp_path / "probe.py"
+    path.write_text(source)
+    known = {"powergraph.analyses", "powergraph.analyses.sweep", "powergraph.plot",
+             "powergraph.plot.power_flow", "powergraph.cli.main", "powergraph.errors"}
+    found = lazy_imports_of("powergraph.statics.probe", path, known)
+    assert found == {("f", "powergraph.analyses"), ("f", "powergraph.analyses.sweep"),
+                     ("R.plot", "powergraph.plot"), ("R.plot", "powergraph.plot.power_flow"),
+                     ("R.g", "powergraph.cli.main")}
+    assert _lazy_allowed("powergraph.statics.probe", "R.plot", "powergraph.plot.power_flow")
+    assert not _lazy_allowed("powergraph.statics.probe", "f", "powergraph.analyses.sweep")
+    assert not _lazy_allowed("powergraph.statics.probe", "R.g", "powergraph.cli.main")
+    assert not _lazy_allowed("powergraph.statics.probe", "__getattr__", "powergraph.plot")
+
+
+def test_no_function_imports_a_later_layer() -> None:
+    """Imports inside functions follow the layers too, but for LAZY_ALLOWED; in
+    particular model, kinematics, statics and gears never reach analyses, methods, plot
+    or cli (loading a model with tolerances does not pull in the sweep)."""
+    assert wrong_lazy_imports() == []
+
+
+MODEL_WITH_TOLERANCES = """\
+name: pair
+components: {0: {role: frame}, 1: {teeth: 20}, 2: {teeth: 60}}
+links: [{type: mesh, between: [1, 2], efficiency: 0.98}]
+ports: [{component: 1, role: input}, {component: 2, role: output}]
+tolerances:
+  links.0.efficiency: {distribution: uniform, min: 0.97, max: 0.99}
+"""
+
+
+def test_loading_a_model_with_tolerances_imports_no_later_layer() -> None:
+    """In a fresh interpreter, a model with ``tolerances:`` loads without importing the
+    statics, the analyses, the methods or the plots (the block is parsed in the model)."""
+    import subprocess
+    import sys
+
+    code = ("import sys\nfrom powergraph.model import loads_model\n"
+            f"m = loads_model({MODEL_WITH_TOLERANCES!r})\nassert len(m.tolerances) == 1\n"
+            "print(sorted(n for n in sys.modules if n.startswith(('powergraph.analyses', "
+            "'powergraph.statics', 'powergraph.methods', 'powergraph.plot'))))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=PACKAGE.parent)
+    assert out.stdout.strip() == "[]"

@@ -27,7 +27,6 @@ Examples
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -41,11 +40,12 @@ from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.bearings import bearing_torque, relative_speed
-from powergraph.statics.directions import driver_codes, own_scales, relative_speeds
+from powergraph.statics.directions import (driver_codes, factors_for, own_scales,
+                                           relative_speeds)
 from powergraph.statics.equilibrium import loads_of
 from powergraph.statics.friction import MAX_PASSES, friction_meshes
+from powergraph.units_si import RAD_S_PER_RPM
 
-RPM = 2.0 * math.pi / 60.0
 #: The single solve's convergence test (the default of ``solve_with_friction``): no
 #: efficiency changes by more than this, no bearing torque by more than this times the
 #: largest torque of the train.
@@ -96,7 +96,7 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
     unconverged = np.zeros(speeds_rpm.shape, dtype=bool)
     for p in np.flatnonzero(pending):
         try:
-            result = solve(at_point(model, speeds_rpm[p] * RPM, torques[p], sense))
+            result = solve(at_point(model, speeds_rpm[p] * RAD_S_PER_RPM, torques[p], sense))
         except SolveError:
             unconverged[p] = True
             continue
@@ -122,7 +122,7 @@ def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
     reference = None
     for p in dict.fromkeys((0, speeds_rpm.size // 2, speeds_rpm.size - 1)):
         try:
-            reference = solve(at_point(model, speeds_rpm[p] * RPM, torques[p], sense))
+            reference = solve(at_point(model, speeds_rpm[p] * RAD_S_PER_RPM, torques[p], sense))
             break
         except SolveError:
             continue
@@ -167,8 +167,8 @@ class _Grid:
         elements = elements_of(model)
         row = {body.id: r for r, body in enumerate(model.bodies)}
         values, inverse = np.unique(speeds_rpm, return_inverse=True)
-        kins = [solve_speeds(at_point(model, v * RPM, torques[0], sense)) for v in values]
-        loads = loads_of(at_point(model, values[0] * RPM, torques[0], sense), kins[0])
+        kins = [solve_speeds(at_point(model, v * RAD_S_PER_RPM, torques[0], sense)) for v in values]
+        loads = loads_of(at_point(model, values[0] * RAD_S_PER_RPM, torques[0], sense), kins[0])
         out_body = model.body_of[model.outputs[0].component]
         if set(loads.given) != {out_body} or \
                 len(model.bodies) != len(elements) + len(loads.unknown):
@@ -183,7 +183,7 @@ class _Grid:
 
     def factors(self, eta: np.ndarray) -> np.ndarray:
         """``(P, E)`` element factors: η where gear a drives, 1/η where b drives, else 1."""
-        return np.where(self.codes > 0, eta, np.where(self.codes < 0, 1.0 / eta, 1.0))
+        return factors_for(self.codes, eta)
 
     def balance(self, factors: np.ndarray, extra: np.ndarray) -> tuple[np.ndarray, ...]:
         """The stacked torque balances ``(P, B, B)``, their right-hand sides and solutions."""

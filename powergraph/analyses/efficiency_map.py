@@ -34,8 +34,8 @@ from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
+from powergraph.units_si import RAD_S_PER_RPM
 
-RPM = 2.0 * math.pi / 60.0
 
 
 @dataclass(frozen=True)
@@ -118,14 +118,14 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     power = np.empty_like(values)
     for i, speed in enumerate(speeds):
         if model.has_bearing_losses:
-            values[i], power[i] = _affine_row(model, speed * RPM, torques, sense)
+            values[i], power[i] = _affine_row(model, speed * RAD_S_PER_RPM, torques, sense)
             continue
         for j, torque in enumerate(torques):
             if i or j:
                 values[i, j] = values[0, 0]
                 power[i, j] = power[0, 0] * (speed / speeds[0]) * (torque / torques[0])
                 continue
-            result = solve(_at(model, speed * RPM, torque, sense))
+            result = solve(_at(model, speed * RAD_S_PER_RPM, torque, sense))
             values[i, j], power[i, j] = result.efficiency, result.input_power
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,

@@ -3,7 +3,7 @@
 One linear row per mesh ``(w_a - w_c) - i (w_b - w_c) = s`` (``s`` = 0, or a slip used by
 sensitivity analyses), one per coupling ``w_a - w_b = 0``, and ``w_frame = 0``.
 DOF = bodies - rank (decided structurally, confirmed on the scaled system, see
-:mod:`powergraph.kinematics.linear`). A rank defect or an inconsistency is a
+:mod:`powergraph.linalg`). A rank defect or an inconsistency is a
 KinematicsError that says what is wrong, never a NaN.
 """
 from __future__ import annotations
@@ -16,7 +16,7 @@ import numpy as np
 
 from powergraph.errors import KinematicsError
 from powergraph.kinematics.elements import Element, body_columns, element_stencil, elements_of
-from powergraph.kinematics.linear import (
+from powergraph.linalg import (
     Triplets,
     equilibrated,
     matching,

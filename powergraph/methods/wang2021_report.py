@@ -22,11 +22,11 @@ from typing import TYPE_CHECKING, Any
 
 from powergraph.methods.tuning import lossless_cycloid_power
 from powergraph.statics.flow import GENERATOR, MOTOR, Flow
+from powergraph.units_si import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
     from powergraph.methods.wang2021 import Wang2021Result
 
-RPM = 60.0 / 6.283185307179586
 
 
 def _pair(result: "Wang2021Result", link: int) -> str:
@@ -138,7 +138,7 @@ def text_report(result: "Wang2021Result") -> str:
     lines += _why(result)
     lines += ["", "speeds", f"  {'component':<24}{'rad/s':>14}{'rpm':>14}"]
     for cid, w in result.speeds.items():
-        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM:>14.6g}")
+        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM_PER_RAD_S:>14.6g}")
     lines += ["", "external torques consistent with the paper's efficiency (N·m)"]
     for cid, t in result.torques.items():
         lines.append(f"  {model.components[cid].label:<24}{t:>14.6g}")

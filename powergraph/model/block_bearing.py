@@ -25,8 +25,8 @@ from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.units import parse_quantity
+from powergraph.units_si import RPM_PER_RAD_S
 
-RPM = 30.0 / math.pi       # rad/s -> rpm
 
 
 @dataclass(frozen=True)
@@ -58,7 +58,7 @@ class Drag:
 
     def torque(self, relative_speed: float) -> float:
         """Drag torque (N·m) of one instance at ``relative_speed`` (rad/s)."""
-        return self.a + self.b * abs(relative_speed) * RPM
+        return self.a + self.b * abs(relative_speed) * RPM_PER_RAD_S
 
 
 def parse_drag(raw: Mapping, path: str) -> Drag:

@@ -11,7 +11,7 @@
 - ``links[i].pins`` (+ ``output_pins``, ``crank_bearing``) on a cycloid mesh
   (docs/losses.md): :mod:`powergraph.model.block_pins`, stored as the mesh's friction law
 - top-level ``tolerances`` (PATH -> distribution, docs/tolerance.md):
-  :mod:`powergraph.analyses.tolerance.spec`
+  :mod:`powergraph.model.block_tolerances`
 
 The model layer validates them (so ``powergraph check`` catches every mistake) and stores
 the result; the analyses read them.
@@ -71,7 +71,7 @@ def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],
 
 def validate_tolerances(raw: Any, model) -> Any:
     """Validate the top-level ``tolerances:`` block against the built model (its PATHs
-    address the model's values; see :mod:`powergraph.analyses.tolerance.spec`)."""
-    from powergraph.analyses.tolerance.spec import validate_tolerances as validate
+    address the model's values; see :mod:`powergraph.model.block_tolerances`)."""
+    from powergraph.model.block_tolerances import validate_tolerances as validate
 
     return validate(raw, model)

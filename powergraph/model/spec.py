@@ -106,7 +106,7 @@ class Model:
     body_of: Mapping[str, str]
     description: str | None = None
     source: str | None = None
-    tolerances: Any = None  # top-level ``tolerances:`` (powergraph.analyses.tolerance.spec)
+    tolerances: Any = None  # top-level ``tolerances:`` (powergraph.model.block_tolerances)
     #: Caveats found while reading the model (powergraph.errors.Caveat): a speed without a
     #: unit, a planetary set that cannot be assembled... The model is still valid.
     warnings: tuple = field(default=(), compare=False)

@@ -33,6 +33,7 @@ from functools import lru_cache
 
 from powergraph.errors import Caveat, ModelError
 from powergraph.model.yaml_loader import brief
+from powergraph.units_si import RAD_S_PER_RPM
 
 #: SI unit of each kind of quantity a model may carry.
 SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm"}
@@ -41,7 +42,7 @@ MAX_TEXT, MAX_NAME = 64, 24
 #: Largest power of a unit (``m^4``) and deepest parentheses in a quantity string.
 MAX_POWER, MAX_PARENS = 4, 2
 
-_RPM = 2 * math.pi / 60
+_RPM = RAD_S_PER_RPM
 # Factor to the SI unit of the kind (mm for lengths, as the geometry tables use). The
 # speeds obey speed_in_rad_s's rule: a pure frequency (Hz, 1/min) is revolutions per time.
 _FAST = {

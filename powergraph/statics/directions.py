@@ -46,8 +46,21 @@ def relative_speeds(elements: tuple[Element, ...], kin: Kinematics) -> np.ndarra
     """
     speeds = kin.body_speeds
     w = body_columns(elements, speeds).astype(float).reshape(-1, 3)
-    rel = w[:, 0] - w[:, 2]
-    return np.where(np.abs(rel) <= SPEED_NOISE * np.abs(w).max(axis=1, initial=0.0), 0.0, rel)
+    return relative_speed(w[:, 0], w[:, 1], w[:, 2])
+
+
+def relative_speed(w_a, w_b, w_c):
+    """``w_a - w_c`` (arrays of any one shape, or floats), exactly 0 where it is round-off
+    on the scale of the three speeds (:data:`SPEED_NOISE`): the one rule for a relative
+    speed that is zero, for one operating point or many.
+
+    >>> relative_speed(np.array([1.0, 1.0]), np.array([2.0, 2.0]), np.array([0.5, 1.0 - 1e-16]))
+    array([0.5, 0. ])
+    """
+    w_a, w_b, w_c = np.asarray(w_a, float), np.asarray(w_b, float), np.asarray(w_c, float)
+    rel = w_a - w_c
+    top = np.maximum(np.maximum(np.abs(w_a), np.abs(w_b)), np.abs(w_c))
+    return np.where(np.abs(rel) <= SPEED_NOISE * top, 0.0, rel)
 
 
 def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
@@ -79,7 +92,7 @@ def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     ----------
     bodies : (E, 3) int array
         Each element's gear a, gear b and carrier as body columns.
-    ratios : (E,) array
+    ratios : (E,) array, or (E, P) with ``forces``
     forces, factors : (E,) or (E, P) arrays
         Element forces and factors (a column per operating point).
     load : (B,) or (B, P) array
@@ -97,8 +110,10 @@ def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     [6.0]
     """
     load = np.array(load, dtype=float)
-    for column, c in enumerate(element_stencil(ratios[:, None] if forces.ndim == 2 else ratios,
-                                               factors)):
+    ratios = np.asarray(ratios, dtype=float)
+    if ratios.ndim < forces.ndim:
+        ratios = ratios[:, None]
+    for column, c in enumerate(element_stencil(ratios, factors)):
         np.add.at(load, bodies[:, column], np.abs(c * forces))
     own = np.where((bodies == frame)[(...,) + (None,) * (forces.ndim - 1)], -np.inf,
                    load[bodies])
@@ -125,11 +140,59 @@ def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Patte
     return tuple(driver_codes(forces, rel, scales).tolist())
 
 
+def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
+               factors: np.ndarray, rel: np.ndarray, load: np.ndarray,
+               frame: int) -> np.ndarray:
+    """Who drives each element, for one operating point (``(E,)`` arrays) or many
+    (``(E, P)``): :func:`driver_codes` on the scales of :func:`own_scales`. Every evaluator
+    reads its directions here.
+
+    >>> read_codes(np.array([[1, 2, 0]]), np.array([-2.0]), np.array([3.0]),
+    ...            np.array([1.0]), np.array([-1.0]), np.zeros(3), 0).tolist()
+    [1]
+    """
+    scales = own_scales(bodies, ratios, forces, factors, load, frame)
+    return driver_codes(forces, rel, scales)
+
+
+def factor_of(code: int, efficiency):
+    """The factor of one element: ``η`` where gear a drives (code +1), ``1/η`` where gear
+    b drives (-1), 1 where nothing passes (0). ``efficiency`` may be a float or a sympy
+    expression; for arrays use :func:`factors_for`.
+
+    >>> factor_of(1, 0.5), factor_of(-1, 0.5), factor_of(0, 0.5)
+    (0.5, 2.0, 1)
+    """
+    return efficiency if code > 0 else (1 / efficiency if code < 0 else 1)
+
+
+def factors_for(codes, efficiencies) -> np.ndarray:
+    """:func:`factor_of` over arrays (any shapes that broadcast).
+
+    >>> factors_for(np.array([1, -1, 0]), 0.5).tolist()
+    [0.5, 2.0, 1.0]
+    """
+    codes = np.asarray(codes)
+    with np.errstate(divide="ignore"):
+        inverse = 1.0 / np.asarray(efficiencies, dtype=float)
+    return np.where(codes > 0, efficiencies, np.where(codes < 0, inverse, 1.0))
+
+
 def factors_of(pattern: Pattern, elements: tuple[Element, ...]) -> np.ndarray:
     """``f = η`` where gear a drives, ``1/η`` where gear b drives, 1 where nothing passes."""
-    eta = np.array([e.efficiency for e in elements])
-    code = np.array(pattern, dtype=float)
-    return np.where(code > 0, eta, np.where(code < 0, 1.0 / eta, 1.0))
+    return factors_for(np.array(pattern, dtype=int),
+                       np.array([e.efficiency for e in elements], dtype=float))
+
+
+def agreeing(assumed, found) -> np.ndarray:
+    """:func:`agrees` over arrays: per operating point (the last axis of ``(E, P)`` codes),
+    whether ``found`` agrees with ``assumed`` in every element.
+
+    >>> agreeing(np.array([[1, 1], [-1, -1]]), np.array([[1, 0], [1, -1]])).tolist()
+    [False, True]
+    """
+    assumed, found = np.asarray(assumed), np.asarray(found)
+    return np.all((found == 0) | (found == assumed), axis=0)
 
 
 def agrees(assumed: Pattern, found: Pattern) -> bool:

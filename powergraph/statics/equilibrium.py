@@ -15,7 +15,7 @@ import numpy as np
 from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
 from powergraph.kinematics.elements import body_columns
-from powergraph.kinematics.linear import (
+from powergraph.linalg import (
     SVD_RTOL,
     Triplets,
     equilibrated,
@@ -100,7 +100,7 @@ def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
     forces then the unknown external torques of a previous solve, is a better hint still.
 
     A square balance is solved scaled (each force and torque accurate relative to itself,
-    :func:`powergraph.kinematics.linear.solve_square`) and is determined when its scaled
+    :func:`powergraph.linalg.solve_square`) and is determined when its scaled
     system is regular; otherwise the singular values of the equilibrated balance decide
     between indeterminate load sharing (minimum-norm forces), undetermined loads and
     contradictory loads.

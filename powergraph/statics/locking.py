@@ -17,7 +17,7 @@ import numpy as np
 
 from powergraph.kinematics import Element
 from powergraph.model.spec import Model
-from powergraph.statics.directions import Pattern, agrees, describe, pattern_of
+from powergraph.statics.directions import Pattern, agrees, describe, factor_of, pattern_of
 from powergraph.statics.equilibrium import Loads
 from powergraph.statics.search import (
     EXHAUSTIVE_LIMIT,
@@ -113,8 +113,7 @@ def _confirm(st: Statics, solve: ForceSolver, codes: dict[int, int],
     """The assumed drivers and stick factors, checked with the project's torque balance."""
     factors = np.ones(len(st.elements))
     for k, code in codes.items():
-        eta = st.elements[k].efficiency
-        factors[k] = eta if code > 0 else (1.0 / eta if code < 0 else 1.0)
+        factors[k] = factor_of(code, st.elements[k].efficiency)
     for k, f in stick.items():
         factors[k] = f
     forces, scales = solve(factors)

@@ -1,12 +1,11 @@
 """The JSON object and the readable text report of ``powergraph solve`` (docs/format.md)."""
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from powergraph.statics.result import PowerFlowResult
+from powergraph.units_si import RPM_PER_RAD_S
 
-RPM = 60.0 / (2.0 * math.pi)
 
 
 def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
@@ -104,7 +103,7 @@ def text_report(result: PowerFlowResult) -> str:
         lines.append(f"circulating power           {_fmt_power(result.circulating_power)}")
     lines += ["", "speeds", f"  {'component':<24}{'rad/s':>14}{'rpm':>14}"]
     for cid, w in result.speeds.items():
-        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM:>14.6g}")
+        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM_PER_RAD_S:>14.6g}")
     lines += ["", "external torques (N·m, positive in the sense of positive speed)"]
     for cid, t in result.torques.items():
         lines.append(f"  {model.components[cid].label:<24}{t:>14.6g}")
@@ -148,7 +147,7 @@ def _bearing_lines(result: PowerFlowResult) -> list[str]:
              f"{'M0 N·m':>10}{'M N·m':>10}{'loss':>14}"]
     for b in result.bearings:
         between = f"{raw(b.between[0])}-{raw(b.between[1])}"
-        lines.append(f"  {b.node:<16}{between:<10}{b.relative_speed * RPM:>11.5g}"
+        lines.append(f"  {b.node:<16}{between:<10}{b.relative_speed * RPM_PER_RAD_S:>11.5g}"
                      f"{b.radial_load:>11.5g}{b.friction_torque:>11.4g}{b.drag_torque:>10.4g}"
                      f"{b.torque:>10.4g}{_fmt_power(b.loss):>14}")
     return lines

@@ -28,6 +28,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, element_stencil
 from powergraph.model.spec import Model
+from powergraph.statics.directions import factors_for
 from powergraph.statics.equilibrium import Loads
 
 #: Trains with at most this many moving lossy elements are searched exhaustively.
@@ -102,7 +103,7 @@ def enumerate_patterns(st: Statics) -> list[tuple[int, ...]] | None:
         factor = np.ones(len(codes))
         if k in lossy:
             code = codes[:, lossy.index(k)]
-            factor = np.where(code > 0, e.efficiency, 1.0 / e.efficiency)
+            factor = factors_for(code, e.efficiency)
         matrix[:, :, k] = st.column(k, factor)
     for j, r in enumerate(st.unknown_rows):
         matrix[:, r, n_el + j] = 1.0

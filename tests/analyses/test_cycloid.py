@@ -21,7 +21,7 @@ from powergraph.analyses.cycloid import (PAPER_FITS, central_difference_ratio,
                                          fluctuation_study, iso_tolerance,
                                          profile_error_for_grade)
 from powergraph.analyses.cycloid.contact import contact_curve
-from powergraph.analyses.cycloid.tolerance import GRADE_FACTORS, ISO_286_TABLE
+from powergraph.gears.iso286 import GRADE_FACTORS, ISO_286_TABLE
 from powergraph.errors import UsageError
 
 CSOBAN = yaml.safe_load((Path(__file__).resolve().parents[1] / "data" /

@@ -1,8 +1,8 @@
 """Long and badly scaled trains: exact closed forms, dense and sparse paths agreeing.
 
 The solver assembles its systems as triplets and solves them with dense numpy below
-``powergraph.kinematics.linear.SPARSE_FROM`` unknowns and with scipy.sparse above;
-``linear.PATH`` forces one path. Expected values are closed forms derived here.
+``powergraph.linalg.SPARSE_FROM`` unknowns and with scipy.sparse above;
+``linalg.PATH`` forces one path. Expected values are closed forms derived here.
 """
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ import yaml
 
 import powergraph as pg
 from powergraph.errors import ModelError
-from powergraph.kinematics import linear
+from powergraph import linalg
 from powergraph.model import loads_model, model_from_dict
 from powergraph.testing import assert_conservation
 
@@ -27,7 +27,7 @@ UNSOLVABLE = yaml.safe_load((ROOT / "tests" / "data" / "unsolvable.yaml").read_t
 
 @pytest.fixture(params=["dense", "sparse"])
 def path(request, monkeypatch):
-    monkeypatch.setattr(linear, "PATH", request.param)
+    monkeypatch.setattr(linalg, "PATH", request.param)
     return request.param
 
 
@@ -110,7 +110,7 @@ def test_five_thousand_gear_chain_is_exact() -> None:
 def test_a_chain_in_the_sparse_path_is_exact() -> None:
     """The same closed forms, 400 gears (sparse by size), η 0.5: 0.5^399 ≈ 1e-120."""
     n = 400
-    assert linear.use_sparse(n)
+    assert linalg.use_sparse(n)
     result = solve(loads_model(chain_text(n, 0.5)))
     assert result.ratio == pytest.approx((-1) ** (n - 1) * (20 + n % 7) / 21, rel=1e-9)
     assert result.efficiency == pytest.approx(0.5 ** (n - 1), rel=1e-9, abs=0)
@@ -126,7 +126,7 @@ def test_dense_and_sparse_paths_agree(model_path: Path, monkeypatch) -> None:
     model = pg.load_model(model_path)
     results = {}
     for which in ("dense", "sparse"):
-        monkeypatch.setattr(linear, "PATH", which)
+        monkeypatch.setattr(linalg, "PATH", which)
         results[which] = solve(model)
     dense, sparse = results["dense"], results["sparse"]
     speed_scale = max(abs(w) for w in dense.kinematics.body_speeds.values())

@@ -14,10 +14,9 @@ from powergraph.analyses.cycloid.fluctuation import (CycloidFluctuation,
                                                      cycloid_fluctuation, deviation_percent)
 from powergraph.analyses.cycloid.geometry import (CycloidGeometry, cycloid_geometry,
                                                   smallest_convex_radius)
-from powergraph.analyses.cycloid.tolerance import (GRADES, iso_tolerance,
-                                                   profile_error_for_grade)
 from powergraph.analyses.cycloid.train import (StageAtOutput, TrainFluctuation,
                                                train_fluctuation)
+from powergraph.gears.iso286 import GRADES, iso_tolerance, profile_error_for_grade
 
 __all__ = [
     "CycloidFluctuation", "CycloidGeometry", "FluctuationStudy", "GRADES", "PAPER_FITS",

@@ -16,9 +16,8 @@ from scipy.linalg import lstsq
 
 from powergraph.analyses.cycloid.fluctuation import cycloid_fluctuation
 from powergraph.analyses.cycloid.report import study_text
-from powergraph.analyses.cycloid.tolerance import (GRADES, LARGEST_SIZE,
-                                                   profile_error_for_grade)
 from powergraph.errors import UsageError
+from powergraph.gears.iso286 import GRADES, LARGEST_SIZE, profile_error_for_grade
 
 #: Disc teeth of the paper's grid (Table 3).
 PAPER_TEETH = (9, 25, 43, 53, 117)

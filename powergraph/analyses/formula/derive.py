@@ -23,6 +23,7 @@ from powergraph.errors import MethodNotApplicableError
 from powergraph.kinematics import Element, elements_of
 from powergraph.model.spec import Model
 from powergraph.statics import PowerFlowResult, solve
+from powergraph.statics.directions import factor_of
 
 
 def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) -> FormulaResult:
@@ -148,7 +149,7 @@ def _driver(code: int, el: Element) -> str | None:
 
 
 def _factor(code: int, eta: sp.Expr) -> sp.Expr:
-    return eta if code > 0 else (1 / eta if code < 0 else sp.Integer(1))
+    return sp.sympify(factor_of(code, eta))
 
 
 def _power_conditions(elements: tuple[Element, ...], codes: Mapping[int, int],

@@ -24,8 +24,8 @@ from typing import TYPE_CHECKING, Callable, Sequence
 
 import numpy as np
 
-from powergraph.analyses.sweep.result import OK
 from powergraph.kinematics.elements import element_stencil
+from powergraph.statics.directions import factor_of, factors_for
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.compile import Layout
@@ -38,8 +38,6 @@ MAX_SYMBOLIC = 8
 SINGULAR = 1e-12
 #: Singular-value ratio below which a system is rank-deficient (as the single solver).
 RANK_TOLERANCE = 1e-10
-#: Power below this fraction of the given port power passes "nothing" (as the single solver).
-DIRECTION_TOLERANCE = 1e-11
 
 
 def applies(layout: "Layout") -> bool:
@@ -47,13 +45,6 @@ def applies(layout: "Layout") -> bool:
     return (layout.determinate and len(layout.free_bodies) == layout.n_elements
             == len(layout.balance_bodies) and len(set(layout.unknown)) == len(layout.unknown)
             and 0 < layout.n_elements <= MAX_SYMBOLIC)
-
-
-def driver_codes(products, tolerance, out: np.ndarray | None = None) -> np.ndarray:
-    """+1 where gear a feeds power ``-λ (w_a - w_c)`` in (``product = λ (w_a - w_c)``
-    below ``-tolerance``), -1 where it takes it out, 0 where (almost) nothing passes."""
-    return np.subtract(np.asarray(products < -tolerance).view(np.int8),
-                       np.asarray(products > tolerance).view(np.int8), out=out)
 
 
 class SymbolicBackend:
@@ -132,12 +123,14 @@ class ClosedForm:
     A designer who derives a train's efficiency by hand fixes who drives each mesh in its
     carrier's frame first, then checks that this holds. Here, for the driver ``codes`` of
     the ``moving`` elements (efficiency not identically 1), ``f = η`` or ``1/η`` goes into
-    the symbolic solution and speeds, loads, forces, port powers and losses are composed
+    the symbolic solution, and the speeds, the given torques and the forces are composed
     into one expression graph. Per variant :meth:`evaluate` checks what the single solver
-    would find: the speed and force systems regular, and the pattern read from the ideal
-    forces (``f = 1``), then (two passes, ``start`` differing from ``codes``, as a
-    back-driven train typically needs) from ``start``'s forces, and from the pattern's own
-    forces. Variants that fail the check are left to the general iteration.
+    would find, with its own rule for the directions
+    (:func:`~powergraph.analyses.sweep.evaluate.element_codes`): the speed and force
+    systems regular, and the pattern read from the ideal forces (``f = 1``), then (two
+    passes, ``start`` differing from ``codes``, as a back-driven train typically needs)
+    from ``start``'s forces, and from the pattern's own forces. Variants that fail the
+    check are left to the general iteration.
     """
 
     def __init__(self, backend: SymbolicBackend, moving: tuple[int, ...],
@@ -153,97 +146,55 @@ class ClosedForm:
         etas, loads = sp.symbols(f"e0:{n}"), sp.symbols(f"p0:{len(lay.loads)}")
         det_k, scale_k, speeds = backend.kinematics
         torques = [_torque(load, value, speeds) for load, value in zip(lay.loads, loads)]
-        rel = [speeds[a] - speeds[c] for a, c in zip(lay.body_a, lay.body_c)]
-        patterns = [(0,) * len(moving)] + ([self.start] if self.passes == 2 else []) + [codes]
-        factors = [_factors(sp, n, moving, pattern, etas) for pattern in patterns]
-        checks = [_balance(backend, f, torques) for f in factors]
-        final, factors = checks[-1][2], factors[-1]
-        products = [final[k] * rel[k] for k in range(n)]
-        reaction = dict(zip(lay.unknown, final[n:]))
-        given = {load.body: t for load, t in zip(lay.loads, torques)}
-        external = {b: given[b] if b in given else reaction[b]
-                    for b in set(lay.inputs + lay.outputs)}
-        ratio = (speeds[lay.ratio_bodies[0]] / speeds[lay.ratio_bodies[1]]
-                 if lay.ratio_bodies else sp.nan)
-        outputs = [det_k, scale_k, *[x for c in checks for x in c[:2]],
-                   *[c[2][k] * rel[k] for c in checks[:-1] for k in moving], *products,
-                   sum(external[b] * speeds[b] for b in lay.inputs),
-                   -sum(external[b] * speeds[b] for b in lay.outputs), ratio,
-                   *[products[k] * (factors[k] - 1) for k in moving],
-                   *[sp.Abs(t * speeds[load.body]) for load, t in zip(lay.loads, torques)]]
+        self._patterns = ([(0,) * len(moving)] + ([self.start] if self.passes == 2 else [])
+                          + [codes])
+        checks = [_balance(backend, _factors(sp, n, moving, pattern, etas), torques)
+                  for pattern in self._patterns]
+        outputs = [det_k, scale_k, *speeds, *torques,
+                   *[x for c in checks for x in (c[0], c[1], *c[2])]]
         self._function = _lambdify(sp, [backend.q, etas, backend.w, loads], outputs)
 
     def evaluate(self, chunk: "Chunk", out: "Outputs") -> np.ndarray | bool:
         """Write the variants the pattern holds for into ``out``; return where it holds."""
-        n, n_el = chunk.n, self.layout.n_elements
+        from powergraph.analyses.sweep.evaluate import (element_codes, relative_speeds,
+                                                        write_settled)
+
+        lay, n = self.layout, chunk.n
         values = iter(self._function(chunk.magnitudes, chunk.efficiencies, chunk.speeds,
                                      chunk.loads))
         valid = next(values) > next(values)                 # speeds regular
-        for _ in range(self.passes + 1):                    # every force system regular
-            valid = valid & (next(values) > next(values))
-        earlier = [[next(values) for _ in self.moving] for _ in range(self.passes)]
-        products = [next(values) for _ in range(n_el)]
-        input_power, output_power, ratio = next(values), next(values), next(values)
-        losses = [next(values) for _ in self.moving]
-        power = 0.0
-        for term in values:
-            power = np.maximum(power, term)
-        tolerance = DIRECTION_TOLERANCE * np.maximum(power, 1e-300)
-        valid = valid & np.isfinite(tolerance)
-        expected = [self.start] + [self.codes] * (self.passes - 1)
-        for read, codes in zip(earlier + [[products[k] for k in self.moving]],
-                               expected + [self.codes]):
-            for product, code in zip(read, codes):
-                valid = valid & _holds(product, code, tolerance)
+        speeds = [next(values) for _ in range(lay.n_bodies)]
+        torques = [next(values) for _ in lay.loads]
+        for torque, load in zip(torques, lay.loads):
+            valid = valid & np.isfinite(torque * speeds[load.body])
+        rel = relative_speeds(lay, speeds)
+        etas = [chunk.efficiencies[k] for k in self.moving]
+        expected = [self.start] + [self.codes] * self.passes
+        for pattern, codes in zip(self._patterns, expected):
+            valid = valid & (next(values) > next(values))    # the force system regular
+            forces = [next(values) for _ in range(lay.n_elements + len(lay.unknown))]
+            factors = [factors_for(c, e) for c, e in zip(pattern, etas)]
+            read = element_codes(lay, chunk.magnitudes, torques, rel, forces,
+                                 dict(zip(self.moving, factors)))
+            for k, code in zip(self.moving, codes):
+                valid = valid & (read[k] == code)
         valid = np.broadcast_to(valid, n)
         if not valid.any():
             return False
-        target = out if valid.all() else type(out).empty(n, n_el)
-        self._write(target, input_power, output_power, ratio, products, losses, tolerance)
+        target = out if valid.all() else type(out).empty(n, lay.n_elements)
+        write_settled(lay, chunk, torques, rel, speeds, forces, factors, self.moving, target,
+                      self.passes)
         if target is out:
             return True
         out.put(valid, target, valid)
         return valid
-
-    def _write(self, out: "Outputs", input_power, output_power, ratio, products: list,
-               losses: list, tolerance) -> None:
-        """Every result of the chunk into ``out``, in place."""
-        out.input_power[:] = input_power
-        out.output_power[:] = output_power
-        out.ratio[:] = ratio
-        np.divide(out.output_power, out.input_power, out=out.efficiency)
-        if not np.all(input_power):
-            out.efficiency[out.input_power == 0] = np.nan
-        _sum(losses, out.total_loss)
-        moving = dict(zip(self.moving, range(len(self.moving))))
-        for k, product in enumerate(products):
-            j = moving.get(k)
-            if j is None:
-                out.losses[k] = 0.0
-                driver_codes(product, tolerance, out=out.codes[k])
-            else:
-                out.losses[k] = losses[j]
-                out.codes[k] = self.codes[j]
-        out.status[:] = OK
-        out.passes[:] = self.passes
-        np.less_equal(out.efficiency, 0.0, out=out.self_locking)
-
-
-def _sum(terms: list, out: np.ndarray) -> None:
-    """``out[:] = sum(terms)`` in place."""
-    if len(terms) < 2:
-        out[:] = terms[0] if terms else 0.0
-        return
-    np.add(terms[0], terms[1], out=out)
-    for term in terms[2:]:
-        out += term
 
 
 def _factors(sp, n: int, moving, codes, etas) -> list:
     """``f = η`` (gear a drives), ``1/η`` (gear b), 1 (nothing, or an ideal element)."""
     factors = [sp.Integer(1)] * n
     for k, code in zip(moving, codes):
-        factors[k] = etas[k] if code > 0 else (1 / etas[k] if code < 0 else sp.Integer(1))
+        factors[k] = sp.sympify(factor_of(code, etas[k]))
     return factors
 
 
@@ -262,15 +213,6 @@ def _balance(backend: SymbolicBackend, factors: list, torques: list) -> tuple:
     mapping.update(zip(backend.t, torques))
     return (det.xreplace(mapping), scale.xreplace(mapping),
             [f.xreplace(mapping) for f in forces])
-
-
-def _holds(product, code: int, tolerance):
-    """The driver code read from ``λ (w_a - w_c)`` is ``code``."""
-    if code > 0:
-        return product < -tolerance
-    if code < 0:
-        return product > tolerance
-    return np.abs(product) <= tolerance
 
 
 class NumericBackend:

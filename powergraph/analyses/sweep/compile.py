@@ -23,10 +23,11 @@ import numpy as np
 from powergraph.analyses.sweep import backends
 from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.paths import Parameter, broadcast_values, parse_paths
-from powergraph.analyses.sweep.result import SweepResult
-from powergraph.errors import ModelError, UsageError
+from powergraph.analyses.sweep.result import CYCLE, LOCKED, OK, UNSETTLED, SweepResult
+from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.statics import PowerFlowResult, solve
 from powergraph.statics.equilibrium import loads_of, solve_equilibrium
 from powergraph.statics.friction import loss_block_places
 
@@ -199,9 +200,11 @@ class CompiledSweep:
             for start in range(0, n, step):
                 stop = min(n, start + step)
                 chunk = self._chunk(flat, start, stop)
-                learned = evaluate_chunk(self.layout, self.backend, chunk,
-                                         outputs.part(start, stop), self._closed_forms,
+                part = outputs.part(start, stop)
+                learned = evaluate_chunk(self.layout, self.backend, chunk, part,
+                                         self._closed_forms,
                                          self._moving if self._learning else None)
+                self._decide_undecided(flat, start, part)
                 if learned is not None:
                     self._add_closed_form(*learned)
                 self._closed_forms.sort(key=lambda form: -form.hits)
@@ -210,6 +213,49 @@ class CompiledSweep:
                               self.backend.name)
 
     evaluate = __call__
+
+    def variant(self, values: Mapping[str, Any], index: int = 0) -> Model:
+        """The model of one variant: ``self.model`` with the swept values of variant
+        ``index`` (of the flattened broadcast shape) written into its links and ports.
+
+        Examples
+        --------
+        >>> from powergraph.model import load_model
+        >>> rv = load_model("models/rv40e.yaml")
+        >>> compile_sweep(rv, ["links.1.efficiency"]).variant(
+        ...     {"links.1.efficiency": [0.9, 0.95]}, 1).links[1].efficiency
+        0.95
+        """
+        arrays, shape = broadcast_values(self.parameters, values)
+        flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
+                for path, a in arrays.items()}
+        return self._variant(flat, index)
+
+    def _variant(self, flat: dict, index: int) -> Model:
+        chunk, lay, model = self._chunk(flat, index, index + 1), self.layout, self.model
+        scalar = lambda value: float(np.ravel(value)[0])   # noqa: E731
+        for k, link in enumerate(lay.links):
+            changes = {"efficiency": scalar(chunk.efficiencies[k])}
+            if lay.kinds[k] == "mesh":
+                changes["ratio"] = lay.signs[k] * scalar(chunk.magnitudes[k])
+            model = model.with_link(link, **changes)
+        for (_, port), value in zip(lay.speed_ports, chunk.speeds):
+            if port is not None:
+                model = model.with_port(port, speed=scalar(value))
+        for load, value in zip(lay.loads, chunk.loads):
+            model = model.with_port(load.port, **{load.kind: scalar(value)})
+        return model
+
+    def _decide_undecided(self, flat: dict, start: int, out: Outputs) -> None:
+        """Variants whose direction iteration cycles or does not settle go to the single
+        solver, whose complementarity search and locking verdict decide them exactly as
+        :func:`powergraph.solve` does (docs/locking.md)."""
+        for j in np.flatnonzero((out.status == CYCLE) | (out.status == UNSETTLED)).tolist():
+            try:
+                result = solve(self._variant(flat, start + j))
+            except PowerGraphError:
+                continue                       # left flagged: no number is made up
+            _write_single(out, j, result, self.layout)
 
     @property
     def patterns(self) -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
@@ -358,6 +404,22 @@ def _base_pattern(model: Model, moving: tuple[int, ...]) -> tuple[int, ...] | No
     codes = [0 if e.driver is None else (1 if e.driver == e.a else -1)
              for e in result.elements]
     return tuple(codes[k] for k in moving)
+
+
+def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout) -> None:
+    """The single solver's answer for variant ``j`` of ``out``."""
+    out.ratio[j] = np.nan if result.ratio is None else result.ratio
+    out.efficiency[j] = result.efficiency
+    out.input_power[j], out.output_power[j] = result.input_power, result.output_power
+    out.total_loss[j] = result.total_loss
+    out.self_locking[j] = result.self_locking
+    out.status[j] = LOCKED if result.lock is not None else OK
+    out.passes[j] = min(result.passes, 127)
+    by_link = {flow.link: flow for flow in result.elements}
+    for k, link in enumerate(layout.links):
+        flow = by_link[link]
+        out.losses[k, j] = flow.loss
+        out.codes[k, j] = 0 if flow.driver is None else (1 if flow.driver == flow.a else -1)
 
 
 def _load_value(port, kind: str) -> float:

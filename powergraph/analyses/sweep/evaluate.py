@@ -22,9 +22,8 @@ from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
-from powergraph.analyses.sweep.backends import DIRECTION_TOLERANCE, driver_codes
 from powergraph.analyses.sweep.result import CYCLE, LOADS, OK, SPEEDS, UNSETTLED
-from powergraph.statics.directions import MAX_PASSES
+from powergraph.statics.directions import MAX_PASSES, factors_for, read_codes, relative_speed
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.compile import Layout
@@ -162,12 +161,11 @@ def solve_chunk(layout: "Layout", backend, chunk: Chunk, out: Outputs) -> None:
         _flag(out.status, regular, SPEEDS)
         torques, power = _given_torques(layout, speeds, chunk.loads)
         _flag(out.status, np.isfinite(power), LOADS)
-        rel = [speeds[a] if c == layout.frame else speeds[a] - speeds[c]
-               for a, c in zip(layout.body_a, layout.body_c)]
-        state = _State(layout, backend, chunk, torques, rel, DIRECTION_TOLERANCE * power)
-        forces, regular = state.solve([1.0] * len(state.moving))
+        state = _State(layout, backend, chunk, torques, relative_speeds(layout, speeds))
+        ideal = [1.0] * len(state.moving)
+        forces, regular = state.solve(ideal)
         _flag(out.status, regular, LOADS)
-        codes = state.directions(forces)
+        codes = state.directions(forces, ideal)
         if out.ideal is not None:
             out.ideal[:] = 0
             for k, code in zip(state.moving, codes):
@@ -176,6 +174,21 @@ def solve_chunk(layout: "Layout", backend, chunk: Chunk, out: Outputs) -> None:
             index = np.flatnonzero(out.status == OK)
             _iterate(state, index, [_take(c, index) for c in codes], out)
         _outcome(layout, state, speeds, out)
+
+
+def write_settled(layout: "Layout", chunk: Chunk, torques: list, rel: list, speeds: list,
+                  forces: list, factors: list, moving: Sequence[int], out: Outputs,
+                  passes: int) -> None:
+    """Every result of ``chunk`` into ``out``, its variants settled on these ``forces``
+    (each element's, then the reactions) with these ``factors`` of the ``moving``
+    elements (a closed form's answer, written like the general iteration's)."""
+    state = _State(layout, None, chunk, torques, rel)
+    state.moving = list(moving)
+    state.eta = [chunk.efficiencies[k] for k in moving]
+    state.forces, state.factors = list(forces), list(factors)
+    out.status[:] = OK
+    out.passes[:] = passes
+    _outcome(layout, state, speeds, out)
 
 
 def _flag(status: np.ndarray, regular, code: int) -> None:
@@ -187,9 +200,16 @@ def _flag(status: np.ndarray, regular, code: int) -> None:
         status[~regular & (status == OK)] = code
 
 
+def relative_speeds(layout: "Layout", speeds: list) -> list:
+    """``w_a - w_c`` of every element, zero by the single solver's rule
+    (:func:`powergraph.statics.directions.relative_speed`)."""
+    return [relative_speed(speeds[a], speeds[b], speeds[c])
+            for a, b, c in zip(layout.body_a, layout.body_b, layout.body_c)]
+
+
 def _given_torques(layout: "Layout", speeds: list, loads: list) -> tuple[list, np.ndarray]:
-    """External torque of each loaded port (``P/w`` in, ``-P/w`` out) and the power scale
-    (the largest given port power, as the single solver's direction tolerance)."""
+    """External torque of each loaded port (``P/w`` in, ``-P/w`` out) and the largest
+    given port power (NaN where a torque is unknown)."""
     torques, scale = [], 1e-300
     for load, value in zip(layout.loads, loads):
         w = speeds[load.body]
@@ -210,13 +230,12 @@ def _take(value, keep):
 
 class _State:
     """The per-chunk arrays of the iteration (or of a subset of its variants), and the
-    final forces, factors, products ``λ (w_a - w_c)`` and codes of the moving elements."""
+    final forces and factors of the moving elements."""
 
-    def __init__(self, layout: "Layout", backend, chunk: Chunk, torques: list, rel: list,
-                 tolerance) -> None:
+    def __init__(self, layout: "Layout", backend, chunk: Chunk, torques: list,
+                 rel: list) -> None:
         self.layout, self.backend = layout, backend
         self.magnitudes, self.torques, self.rel = list(chunk.magnitudes), torques, rel
-        self.tolerance = tolerance
         # elements whose factor depends on the direction (efficiency not identically 1)
         self.moving = [k for k, eta in enumerate(chunk.efficiencies)
                        if np.ndim(eta) or eta != 1.0]
@@ -224,8 +243,6 @@ class _State:
         self.inverse = [1.0 / eta for eta in self.eta]
         self.forces: list = []      # final, per element, then the reactions
         self.factors: list = []     # final, per moving element
-        self.products: list = []    # final λ (w_a - w_c), per moving element (or empty)
-        self.codes: list = []       # final driver codes, per moving element (or empty)
 
     def solve(self, factors: list) -> tuple[list, np.ndarray]:
         """Forces and reactions with these factors of the moving elements."""
@@ -234,14 +251,20 @@ class _State:
             every[k] = factor
         return self.backend.forces(self.magnitudes, every, self.torques)
 
-    def directions(self, forces: list) -> list:
-        """Driver code of each moving element."""
-        return [driver_codes(forces[k] * self.rel[k], self.tolerance) for k in self.moving]
+    def directions(self, forces: list, factors: list) -> list:
+        """Driver code of each moving element, for the forces of these factors."""
+        codes = self.all_codes(forces, factors)
+        return [codes[k] for k in self.moving]
+
+    def all_codes(self, forces: list, factors: list) -> np.ndarray:
+        """``(E, n)`` driver codes of every element by the single solver's rule
+        (:func:`~powergraph.statics.directions.read_codes`: own scales)."""
+        return element_codes(self.layout, self.magnitudes, self.torques, self.rel, forces,
+                             dict(zip(self.moving, factors)))
 
     def factors_of(self, codes: list) -> list:
         """``f = η`` where gear a drives, ``1/η`` where gear b drives, 1 where neither."""
-        return [np.where(c > 0, eta, np.where(c < 0, inverse, 1.0))
-                for c, eta, inverse in zip(codes, self.eta, self.inverse)]
+        return [factors_for(c, eta) for c, eta in zip(codes, self.eta)]
 
     def subset(self, keep: np.ndarray) -> "_State":
         """The same state restricted to the variants ``keep`` (indices or a mask)."""
@@ -249,8 +272,36 @@ class _State:
         new.__dict__.update(self.__dict__)
         for name in ("magnitudes", "torques", "rel", "eta", "inverse"):
             setattr(new, name, [_take(v, keep) for v in getattr(self, name)])
-        new.tolerance = _take(self.tolerance, keep)
         return new
+
+
+def element_codes(layout: "Layout", magnitudes: list, torques: list, rel: list,
+                  forces: list, factors: dict) -> np.ndarray:
+    """``(E, n)`` driver codes of every element of ``n`` variants (``(E,)`` when every
+    value is a scalar): the single solver's rule on arrays
+    (:func:`~powergraph.statics.directions.read_codes`).
+
+    ``forces`` lists each element's force then the reaction of each body of
+    ``layout.unknown``; ``factors`` maps element -> factor (1 for the others).
+    """
+    n_el = layout.n_elements
+    size = max([np.size(v) for v in [*forces, *rel, *torques, *magnitudes,
+                                     *factors.values()]] + [1])
+    column = lambda value: np.broadcast_to(np.asarray(value, dtype=float), size)  # noqa: E731
+    lam = np.array([column(forces[k]) for k in range(n_el)])
+    factor = np.array([column(factors.get(k, 1.0)) for k in range(n_el)])
+    ratios = np.array([column(layout.signs[k] * np.asarray(magnitudes[k], dtype=float))
+                       for k in range(n_el)])
+    load = np.zeros((layout.n_bodies, size))
+    for spec, torque in zip(layout.loads, torques):
+        load[spec.body] += np.abs(column(torque))
+    for body, reaction in zip(layout.unknown, forces[n_el:]):
+        load[body] += np.abs(column(reaction))
+    codes = read_codes(np.array(layout.places, dtype=np.int64), ratios, lam, factor,
+                       np.array([column(r) for r in rel]), load, layout.frame)
+    scalar = not any(np.ndim(v) for v in [*forces, *rel, *torques, *magnitudes,
+                                          *factors.values()])
+    return codes[:, 0] if scalar else codes
 
 
 def _settle_fast(state: _State, codes: list, out: Outputs) -> bool:
@@ -258,13 +309,11 @@ def _settle_fast(state: _State, codes: list, out: Outputs) -> bool:
     variant's directions repeat (then the chunk is solved)."""
     factors = state.factors_of(codes)
     forces, regular = state.solve(factors)
-    following = state.directions(forces)
-    settled = np.all(regular)
-    for old, new in zip(codes, following):
-        settled = settled and bool(np.all(old == new))
+    following = state.directions(forces, factors)
+    settled = bool(np.all(regular)) and all(bool(np.all((new == 0) | (old == new)))
+                                            for old, new in zip(codes, following))
     if settled:
-        state.forces, state.factors, state.codes = forces, factors, following
-        state.products = [forces[k] * state.rel[k] for k in state.moving]
+        state.forces, state.factors = forces, factors
         out.passes[:] = 1
     return settled
 
@@ -281,9 +330,9 @@ def _iterate(state: _State, index: np.ndarray, codes: list, out: Outputs) -> Non
             break
         factors = active.factors_of(codes)
         forces, regular = active.solve(factors)
-        following = active.directions(forces)
+        following = active.directions(forces, factors)
         regular = np.broadcast_to(regular, index.size)
-        settled = regular & _same(codes, following, index.size)
+        settled = regular & _agreeing(codes, following, index.size)
         cycling = regular & ~settled & _seen(following, history, index.size)
         where = index[settled]
         for k, force in enumerate(forces):
@@ -300,6 +349,15 @@ def _iterate(state: _State, index: np.ndarray, codes: list, out: Outputs) -> Non
     else:
         out.status[index] = UNSETTLED
     state.forces, state.factors = list(final_forces), list(final_factors)
+
+
+def _agreeing(codes: list, following: list, size: int) -> np.ndarray:
+    """Variants whose new directions agree with the assumed ones (an element found passing
+    nothing agrees with any driver: :func:`powergraph.statics.directions.agrees`)."""
+    agree = np.ones(size, dtype=bool)
+    for old, new in zip(codes, following):
+        agree &= np.broadcast_to((new == 0) | (old == new), size)
+    return agree
 
 
 def _same(codes: list, following: list, size: int) -> np.ndarray:
@@ -344,21 +402,18 @@ def _outcome(layout: "Layout", state: _State, speeds: list, out: Outputs) -> Non
 
 
 def _losses_and_codes(layout: "Layout", state: _State, out: Outputs) -> None:
-    """Loss ``λ (w_a - w_c)(f - 1)`` and driver code of every element."""
+    """Loss ``λ (w_a - w_c)(f - 1)`` and driver code of every element (the codes read
+    from the final forces, as the single solver reports them)."""
     moving = {k: j for j, k in enumerate(state.moving)}
     out.total_loss[:] = 0.0
+    out.codes[:] = state.all_codes(state.forces, state.factors)
     for k in range(layout.n_elements):
         j = moving.get(k)
-        if j is not None and state.codes:
-            product = state.products[j]
-            out.codes[k] = state.codes[j]
-        else:
-            product = state.forces[k] * state.rel[k]
-            driver_codes(product, state.tolerance, out=out.codes[k])
         if j is None:
             out.losses[k] = 0.0
             continue
-        np.multiply(product, state.factors[j] - 1.0, out=out.losses[k])
+        np.multiply(state.forces[k] * state.rel[k], state.factors[j] - 1.0,
+                    out=out.losses[k])
         out.total_loss += out.losses[k]
 
 

@@ -9,8 +9,8 @@ from typing import Any, Mapping
 import numpy as np
 
 #: Status codes of a variant (``SweepResult.status``), by value.
-STATUS = ("ok", "cycle", "unsettled", "speeds", "loads")
-OK, CYCLE, UNSETTLED, SPEEDS, LOADS = range(5)
+STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
+OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED = range(6)
 #: Columns after the PATHs in the CSV; ``extra=True`` adds the rest.
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
@@ -43,12 +43,14 @@ class SweepResult:
     self_locking : ndarray of bool
         ``efficiency <= 0``: the input cannot drive the output (False where not converged).
     converged : ndarray of bool
-        The variant was solved: its directions settled and its speeds and loads are
-        determined. Where False, ``status`` says why and the powers are NaN.
+        The variant was solved (``ok`` or ``locked``): its directions are decided and its
+        speeds and loads are determined. Where False, ``status`` says why and the powers are NaN.
     status : ndarray of int8
-        Index into :data:`~powergraph.analyses.sweep.STATUS`: ``ok``, ``cycle``
-        (the directions cycle: no consistent pattern), ``unsettled``, ``speeds`` (Willis
-        rows singular), ``loads`` (loads not determined).
+        Index into :data:`~powergraph.analyses.sweep.STATUS`: ``ok``, ``locked`` (the
+        single solver's locking verdict: the train stays at rest, efficiency 0),
+        ``cycle`` and ``unsettled`` (only where even the single solver's complementarity
+        search finds no answer), ``speeds`` (Willis rows singular), ``loads`` (loads not
+        determined).
     passes : ndarray
         Passes of the direction iteration.
     backend : str
@@ -85,7 +87,7 @@ class SweepResult:
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
-                   converged=shaped(outputs.status == OK), status=shaped(outputs.status),
+                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)), status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
 
     @property
@@ -180,10 +182,13 @@ class SweepResult:
         return None
 
     def text_report(self) -> str:
-        """One line: variants, self-locking and unsolved counts."""
-        unsolved = {k: v for k, v in self.status_counts().items() if k != "ok"}
+        """One line: variants, self-locking (of which locked at rest) and unsolved counts."""
+        counts = self.status_counts()
+        unsolved = {k: v for k, v in counts.items() if k not in ("ok", "locked")}
         text = (f"{self.name}: {self.size:,} variants, "
                 f"{int(self.self_locking.sum()):,} self-locking")
+        if counts.get("locked"):
+            text += f" ({counts['locked']:,} locked at rest)"
         if unsolved:
             text += ", not solved: " + ", ".join(f"{v:,} {k}" for k, v in unsolved.items())
         return text

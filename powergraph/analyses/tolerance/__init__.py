@@ -19,15 +19,14 @@ Examples
 from __future__ import annotations
 
 from powergraph.analyses.tolerance.analysis import tolerance_analysis
-from powergraph.analyses.tolerance.distributions import (Distribution, it_tolerance,
-                                                         parse_distribution)
 from powergraph.analyses.tolerance.evaluate import (FluctuationTable, ToleranceEvaluator,
                                                     fluctuation_table)
-from powergraph.analyses.tolerance.paths import Target, resolve_path
 from powergraph.analyses.tolerance.result import ToleranceResult
-from powergraph.analyses.tolerance.spec import Tolerance, Tolerances, validate_tolerances
 from powergraph.analyses.tolerance.stats import (Spec, Yield, parse_spec, summary,
                                                  wilson_interval)
+from powergraph.model.block_tolerances import Tolerance, Tolerances, validate_tolerances
+from powergraph.model.distributions import Distribution, it_tolerance, parse_distribution
+from powergraph.model.tolerance_paths import Target, resolve_path
 
 __all__ = ["Distribution", "FluctuationTable", "Spec", "Target", "Tolerance", "Tolerances",
            "ToleranceEvaluator", "ToleranceResult", "Yield", "fluctuation_table",

@@ -27,7 +27,7 @@ from typing import Mapping
 
 import numpy as np
 
-from powergraph.analyses.tolerance.spec import Tolerances
+from powergraph.model.block_tolerances import Tolerances
 from powergraph.errors import ModelError
 
 #: Nodes of the fluctuation table over the support of the profile error.

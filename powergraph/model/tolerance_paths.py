@@ -1,7 +1,7 @@
 """The model values a tolerance PATH addresses.
 
-The PATHs are those of ``powergraph sweep --set`` (:mod:`powergraph.analyses.sweep.paths`,
-whose :func:`~powergraph.analyses.sweep.paths.parse_path` resolves the power-flow values),
+The PATHs are those of ``powergraph sweep --set`` (:mod:`powergraph.model.paths`,
+whose :func:`~powergraph.model.paths.parse_path` resolves the power-flow values),
 extended into the analysis blocks of a mesh:
 
 ====================================================  =====================================
@@ -39,6 +39,7 @@ import re
 from dataclasses import dataclass
 
 from powergraph.errors import ModelError, PowerGraphError
+from powergraph.model.paths import parse_path
 from powergraph.model.spec import Model
 
 #: kind -> (domain low, domain high, low bound excluded, is a length)
@@ -141,8 +142,6 @@ def _link_index(model: Model, text: str, place: str) -> int:
 
 
 def _efficiency(model: Model, path: str, place: str) -> Target:
-    from powergraph.analyses.sweep.paths import parse_path
-
     try:
         parameter = parse_path(model, path)
     except PowerGraphError as exc:

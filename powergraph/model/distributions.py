@@ -39,7 +39,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from powergraph.errors import ModelError
+from powergraph.errors import ModelError, UsageError
+from powergraph.gears.iso286 import GRADES, iso_tolerance
 from powergraph.model.units import parse_number
 
 FORMS = ("{distribution: uniform, min, max}", "{distribution: normal, mean, sd[, low, high]}",
@@ -199,9 +200,6 @@ def it_tolerance(grade: Any, size: Any, place: str) -> float:
     >>> it_tolerance("IT6", 124.8, "x")       # 120 < D <= 180 mm: IT6 = 25 µm
     0.025
     """
-    from powergraph.analyses.cycloid.tolerance import GRADES, iso_tolerance
-    from powergraph.errors import UsageError
-
     match = re.fullmatch(r"(?:IT)?(\d+)", str(grade).strip(), flags=re.IGNORECASE)
     if isinstance(grade, bool) or not match or int(match.group(1)) not in GRADES:
         raise ModelError(f"grade must be one of {', '.join(f'IT{g}' for g in GRADES)}, got "

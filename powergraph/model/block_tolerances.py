@@ -28,9 +28,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from powergraph.analyses.tolerance.distributions import Distribution, parse_distribution
-from powergraph.analyses.tolerance.paths import DOMAINS, Target, place_of, resolve_path
 from powergraph.errors import ModelError
+from powergraph.model.distributions import Distribution, parse_distribution
+from powergraph.model.tolerance_paths import DOMAINS, Target, place_of, resolve_path
 
 
 @dataclass(frozen=True)

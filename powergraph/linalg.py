@@ -1,4 +1,6 @@
-"""The linear systems of the kinematics and the statics: assembled sparse, solved scaled.
+"""The linear algebra of the kinematics and the statics: sparse triplets, solved scaled.
+
+A base-layer module (numpy; scipy.sparse only for large systems), so every layer uses it.
 
 Both systems are built from :func:`powergraph.kinematics.elements.element_stencil` as
 ``(row, column, value)`` triplets (:class:`Triplets`). Small systems are solved with dense

@@ -7,13 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from powergraph.kinematics import linear
-from powergraph.kinematics.linear import Triplets, matching, rank, solve_square
+from powergraph import linalg
+from powergraph.linalg import Triplets, matching, rank, solve_square
 
 
 @pytest.fixture(params=["dense", "sparse"])
 def path(request, monkeypatch):
-    monkeypatch.setattr(linear, "PATH", request.param)
+    monkeypatch.setattr(linalg, "PATH", request.param)
     return request.param
 
 
