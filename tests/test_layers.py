@@ -12,7 +12,7 @@ Layers, earliest first (docs/architecture.md)::
     4 methods     powergraph.methods.*          } the same rank: they may use each other,
     4 analyses    powergraph.analyses.*         } but only without cycles
     5 plot        powergraph.plot.*             (including the pure layout, plot.layout)
-    6 cli         powergraph.cli.*
+    6 cli         powergraph.cli.*, powergraph.__main__ (``python -m powergraph``)
 
 Only imports that run when a module is imported count: statements of the module body
 (also inside ``try``/``if``), but not ``if TYPE_CHECKING:`` blocks nor imports inside
@@ -31,7 +31,7 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "powergraph"
 
-LAYERS = (("powergraph.cli", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
+LAYERS = (("powergraph.cli", 6), ("powergraph.__main__", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
           ("powergraph.analyses", 4), ("powergraph.testing", 3),
           ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
           ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0),
