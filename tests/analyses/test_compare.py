@@ -81,6 +81,7 @@ def test_compare_table_and_chart(tmp_path, capsys) -> None:
                  "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "RV-40E" in text and "locks back" in text and out.stat().st_size > 1000
+    assert text.splitlines()[-1] == f"wrote {out}"
     assert out.read_text().lstrip().startswith("<?xml")
 
 
