@@ -28,6 +28,7 @@ from __future__ import annotations
 from typing import Any, Protocol, runtime_checkable
 
 from powergraph.errors import PowerGraphError
+from powergraph.format import aligned_table  # noqa: F401  (re-exported: older imports)
 
 
 @runtime_checkable
@@ -57,23 +58,3 @@ def nothing_to_draw(result: object, instead: str) -> NothingToDrawError:
     'int has nothing to draw; print text_report()'
     """
     return NothingToDrawError(f"{type(result).__name__} has nothing to draw; {instead}")
-
-
-def aligned_table(rows: list[list[str]], numeric: set[int],
-                  rules_after: tuple[int, ...] = (0,)) -> list[str]:
-    """Text rows padded to common column widths: ``numeric`` columns right-aligned, the
-    others left-aligned, a dashed rule after each row index in ``rules_after``.
-
-    Used by the text reports of several results.
-
-    >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
-    ['a   n', '--  -', 'bb  1']
-    """
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
-    lines = []
-    for index, row in enumerate(rows):
-        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
-                               for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
-        if index in rules_after:
-            lines.append("  ".join("-" * w for w in widths))
-    return lines

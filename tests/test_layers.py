@@ -3,8 +3,9 @@
 Layers, earliest first (docs/architecture.md)::
 
     0 base        powergraph (the package facade: errors at import, the rest lazily),
-                  powergraph.errors, powergraph.result, powergraph.gears (involute geometry
-                  and mesh-loss physics that the model, statics and analyses share)
+                  powergraph.errors, powergraph.result, powergraph.format (numbers for a
+                  person), powergraph.gears (involute geometry and mesh-loss physics that
+                  the model, statics and analyses share)
     1 model       powergraph.model.*            (YAML, validation, units, graph)
     2 kinematics  powergraph.kinematics.*
     3 statics     powergraph.statics.*, powergraph.testing (checks of statics results),
@@ -12,7 +13,7 @@ Layers, earliest first (docs/architecture.md)::
     4 methods     powergraph.methods.*          } the same rank: they may use each other,
     4 analyses    powergraph.analyses.*         } but only without cycles
     5 plot        powergraph.plot.*             (including the pure layout, plot.layout)
-    6 cli         powergraph.cli.*
+    6 cli         powergraph.cli.*, powergraph.__main__ (``python -m powergraph``)
 
 The import graph holds the imports that run when a module is imported: statements of the
 module body (also inside ``try``/``if``), but not ``if TYPE_CHECKING:`` blocks nor imports
@@ -37,11 +38,11 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "powergraph"
 
-LAYERS = (("powergraph.cli", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
+LAYERS = (("powergraph.cli", 6), ("powergraph.__main__", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
           ("powergraph.analyses", 4), ("powergraph.testing", 3),
           ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
           ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0),
-          ("powergraph.result", 0), ("powergraph.gears", 0), ("powergraph", 0))
+          ("powergraph.result", 0), ("powergraph.format", 0), ("powergraph.gears", 0), ("powergraph", 0))
 
 
 def layer_of(module: str) -> int:

@@ -20,17 +20,19 @@ from typing import Any, Iterable, Iterator
 from powergraph.errors import PowerGraphError
 from powergraph.kinematics import backdriven
 from powergraph.model.spec import Model
-from powergraph.result import aligned_table
+from powergraph.format import (POWER_UNITS, VOLUME_UNITS, aligned_table, format_column,
+                               format_fixed, format_number, format_ratio)
 from powergraph.statics import solve
 
-#: Text-table columns: (row attribute, header, format).
-COLUMNS = (("name", "train", "{}"), ("ratio", "ratio", "{:.4g}"),
-           ("efficiency", "eff %", "{:.2%}"), ("backdrive_efficiency", "back %", "{:.2%}"),
-           ("backdrive_self_locking", "locks back", "{}"),
-           ("circulating_power", "circ. W", "{:.4g}"),
-           ("max_virtual_power_ratio", "max Pv/P", "{:.3g}"), ("meshes", "meshes", "{}"),
-           ("volume_mm3", "volume mm³", "{:.4g}"),
-           ("power_density_kw_per_l", "kW/L", "{:.3g}"))
+#: Text-table columns: (row attribute, header, how a cell is written). A header with
+#: ``{unit}`` takes the one unit its column is written in (powergraph.format).
+COLUMNS = (("name", "train", "text"), ("ratio", "ratio", "ratio"),
+           ("efficiency", "eff. %", "percent"), ("backdrive_efficiency", "back %", "percent"),
+           ("backdrive_self_locking", "locks back", "text"),
+           ("circulating_power", "circ. {unit}", "power"),
+           ("max_virtual_power_ratio", "max Pv/P", "number"), ("meshes", "meshes", "text"),
+           ("volume_mm3", "volume {unit}", "volume"),
+           ("power_density_kw_per_l", "kW/L", "number"))
 
 
 @dataclass(frozen=True)
@@ -92,11 +94,13 @@ class ComparisonTable:
         A self-locking direction shows "locks" instead of its formal (<= 0) efficiency,
         which stays in :meth:`to_dict` (docs/locking.md)."""
         columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in self.rows)]
-        cells = [[header for _, header, _ in columns]]
-        for row in self.rows:
-            cells.append(["locks" if key in LOCKING and getattr(row, LOCKING[key])
-                          else _cell(getattr(row, key), fmt) for key, _, fmt in columns])
-        return "\n".join(aligned_table(cells, set(range(1, len(columns)))))
+        header, body = [], [[] for _ in self.rows]
+        for key, title, kind in columns:
+            unit, cells = _column([getattr(row, key) for row in self.rows], kind)
+            for cell, row, out in zip(cells, self.rows, body):
+                out.append("locks" if key in LOCKING and getattr(row, LOCKING[key]) else cell)
+            header.append(title.format(unit=unit))
+        return "\n".join(aligned_table([header, *body], set(range(1, len(columns)))))
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Grouped bars (delegates, lazily, to :func:`powergraph.plot.compare.plot_comparison`)."""
@@ -109,12 +113,18 @@ class ComparisonTable:
 LOCKING = {"efficiency": "self_locking", "backdrive_efficiency": "backdrive_self_locking"}
 
 
-def _cell(value: Any, fmt: str) -> str:
-    if value is None:
-        return "-"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    return fmt.format(value)
+def _column(values: list[Any], kind: str) -> tuple[str, list[str]]:
+    """``(unit, cells)`` of one column, in one unit (powergraph.format)."""
+    if kind in ("power", "volume"):
+        return format_column(values, POWER_UNITS if kind == "power" else VOLUME_UNITS)
+    if kind == "ratio":
+        return "", [format_ratio(v) for v in values]
+    if kind == "percent":
+        return "%", [format_fixed(None if v is None else 100 * v) for v in values]
+    if kind == "number":
+        return "", [format_number(v, 3) for v in values]
+    return "", ["-" if v is None else ("yes" if v else "no") if isinstance(v, bool) else str(v)
+                for v in values]
 
 
 def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None

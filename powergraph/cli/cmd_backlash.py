@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, load, new_figure, print_json, save_figure
+from powergraph.cli.common import (check_figure_path, load, new_figure, print_json, save_figure,
+                                   say_wrote)
 from powergraph.errors import UsageError
 
 
@@ -39,6 +40,8 @@ def run(args: argparse.Namespace) -> int:
         print_json(report.to_dict())
     else:
         print(report.text_report())
+    if target is not None:
+        say_wrote(target, data_on_stdout=args.json)
     return 0
 
 

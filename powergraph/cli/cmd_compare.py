@@ -10,6 +10,7 @@ from powergraph.cli.common import (
     new_axes,
     print_json,
     save_figure,
+    say_wrote,
 )
 
 
@@ -40,4 +41,5 @@ def run(args: argparse.Namespace) -> int:
     if target is not None:
         ax = table.plot(ax=new_axes(figsize=(max(6.0, 1.6 * len(table) + 2), 4.2)))
         save_figure(ax.figure, target, bbox_inches="tight")
+        say_wrote(target, data_on_stdout=args.json)
     return 0

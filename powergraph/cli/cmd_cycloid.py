@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, new_axes, print_json, save_figure
+from powergraph.cli.common import check_figure_path, new_axes, print_json, save_figure, say_wrote
 from powergraph.errors import UsageError
 
 
@@ -63,4 +63,6 @@ def run(args: argparse.Namespace) -> int:
         print_json(result.to_dict())
     else:
         print(result.text_report())
+    if figure is not None:
+        say_wrote(figure, data_on_stdout=args.json)
     return 0

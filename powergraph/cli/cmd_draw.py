@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, efficiency_arg, load, new_figure, save_figure
+from powergraph.cli.common import (check_figure_path, efficiency_arg, load, new_figure, save_figure,
+                                   say_wrote)
 from powergraph.errors import PowerGraphError
 
 METHODS = ("virtual-power", "wang2021")
@@ -71,5 +72,5 @@ def run(args: argparse.Namespace) -> int:
         save_figure(ax.figure, target, dpi=args.dpi)
     except OSError as exc:
         raise PowerGraphError(f"cannot write {target}: {exc.strerror or exc}") from exc
-    print(f"wrote {target} ({view.title})")
+    say_wrote(target, f"({view.title})")
     return 0

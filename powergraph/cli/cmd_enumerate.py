@@ -10,10 +10,9 @@ coaxial links, placeholder tooth numbers) and the sheet of graphs ``graphs.png``
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
-from powergraph.cli.common import new_axes, print_json, save_figure, write_atomically
+from powergraph.cli.common import new_axes, print_json, save_figure, say_wrote, write_atomically
 from powergraph.errors import UsageError
 
 #: Graphs per picture sheet (10 x 10).
@@ -56,8 +55,7 @@ def run(args: argparse.Namespace) -> int:
     if target is not None:
         written = _write(target, result)
         sheets = "graphs.png" if written <= SHEET else "graphs_001.png ..."
-        print(f"wrote {written} model files and {sheets} to {target}",
-              file=sys.stderr if args.json else sys.stdout)
+        say_wrote(target, f"({written} model files and {sheets})", data_on_stdout=args.json)
     return 0
 
 

@@ -6,7 +6,7 @@ import argparse
 
 import numpy as np
 
-from powergraph.cli.common import load, print_json, write_atomically
+from powergraph.cli.common import load, print_json, say_wrote, write_atomically
 
 
 def span_arg(text: str) -> np.ndarray:
@@ -55,4 +55,5 @@ def run(args: argparse.Namespace) -> int:
         ax = result.plot()
         write_atomically(args.output, lambda tmp: ax.figure.savefig(tmp, dpi=150,
                                                                     bbox_inches="tight"))
+        say_wrote(args.output, data_on_stdout=args.json)
     return 0

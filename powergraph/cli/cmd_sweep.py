@@ -13,7 +13,7 @@ import io
 import sys
 
 from powergraph.cli.common import (add_cluster_arguments, check_figure_path, cluster_options,
-                                   efficiency_arg, load, new_figure, save_figure,
+                                   efficiency_arg, load, new_figure, save_figure, say_wrote,
                                    write_atomically)
 
 
@@ -67,19 +67,12 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(buffer.getvalue())
     if figure is not None:
         _plot(figure, result)
-    note = sys.stdout if args.output else sys.stderr
-    print(summary(result, args.output, figure), file=note)
+    csv_on_stdout = not args.output
+    print(result.text_report(), file=sys.stderr if csv_on_stdout else sys.stdout)
+    for written in (args.output, figure):
+        if written:
+            say_wrote(written, data_on_stdout=csv_on_stdout)
     return 0
-
-
-def summary(result, output: str | None, figure) -> str:
-    """One line: variants, self-locking and unsolved counts, files written."""
-    text = result.text_report()
-    if output:
-        text += f"; wrote {output}"
-    if figure is not None:
-        text += f"; wrote {figure}"
-    return text
 
 
 def _plot(target, result) -> None:

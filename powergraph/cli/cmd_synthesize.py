@@ -102,6 +102,22 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def file_stem(name: str, limit: int = 80) -> str:
+    """A file name from a train's name: letters and digits joined by ``_``, cut only
+    between words (at most ``limit`` characters, a first word longer than that cut).
+
+    >>> file_stem("2K-H simple: sun L1 in, carrier L3 out, ring L0 fixed", 30)
+    '2K_H_simple_sun_L1_in_carrier'
+    """
+    words = re.findall(r"[A-Za-z0-9]+", name) or ["train"]
+    stem = words[0][:limit]
+    for word in words[1:]:
+        if len(stem) + 1 + len(word) > limit:
+            break
+        stem += "_" + word
+    return stem
+
+
 def _output_dir(text: str) -> Path:
     path = Path(text)
     if path.exists() and not path.is_dir():
@@ -113,22 +129,19 @@ def _output_dir(text: str) -> Path:
 
 def _write(result, target: Path, quiet: bool) -> None:
     """Each row's model (YAML) and power-flow diagram (PNG), numbered by rank."""
-    import sys
-
     import yaml
 
-    from powergraph.cli.common import new_figure, save_figure, write_atomically
+    from powergraph.cli.common import new_figure, save_figure, say_wrote, write_atomically
     from powergraph.model import model_from_dict
     from powergraph.plot.power_flow import plot_power_flow
     from powergraph.statics import solve
 
     target.mkdir(exist_ok=True)
     for rank, row in enumerate(result.rows, 1):
-        stem = f"{rank:02d}_" + re.sub(r"[^A-Za-z0-9]+", "_", row.name).strip("_")[:60]
+        stem = f"{rank:02d}_" + file_stem(row.name)
         document = row.model_document()
         text = yaml.safe_dump(document, sort_keys=False, allow_unicode=True)
         write_atomically(target / f"{stem}.yaml", lambda tmp: Path(tmp).write_text(text))
         ax = plot_power_flow(solve(model_from_dict(document)), figure=new_figure())
         save_figure(ax.figure, target / f"{stem}.png", dpi=110)
-        if not quiet:
-            print(f"wrote {target / stem}.yaml and .png", file=sys.stderr)
+        say_wrote(f"{target / stem}.yaml", "and .png", data_on_stdout=quiet)

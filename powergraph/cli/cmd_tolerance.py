@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, load, print_json, write_atomically
+from powergraph.cli.common import check_figure_path, load, print_json, say_wrote, write_atomically
 
 
 def _count(text: str) -> int:
@@ -84,6 +84,8 @@ def run(args: argparse.Namespace) -> int:
         print_json(result.to_dict())
     else:
         print(result.text_report())
+    if target is not None:
+        say_wrote(target, data_on_stdout=args.json)
     return 0
 
 

@@ -7,10 +7,10 @@ exact_profile_mm3, profile_error}}}``.
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
-from powergraph.cli.common import check_figure_path, load, new_axes, print_json, save_figure
+from powergraph.cli.common import (check_figure_path, load, new_axes, print_json, save_figure,
+                                   say_wrote)
 
 #: Tooth numbers of the pitch-circle error plot.
 PLOT_TEETH = range(12, 81)
@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
         print(result.text_report())
     if target is not None:
         _plot(target, model, result)
-        print(f"wrote {target}", file=sys.stderr if args.json else sys.stdout)
+        say_wrote(target, data_on_stdout=args.json)
     return 0
 
 

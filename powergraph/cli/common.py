@@ -84,6 +84,17 @@ def check_figure_path(path: str, option: str = "-o") -> Path:
     return target
 
 
+def say_wrote(path: str | Path, detail: str = "", data_on_stdout: bool = False) -> None:
+    """Tell the user a file was written: ``wrote PATH`` (and ``detail``) on stdout, or on
+    stderr when stdout carries data (``--json``, a CSV) that the line would spoil.
+
+    >>> say_wrote("flow.png", "(actual powers)")
+    wrote flow.png (actual powers)
+    """
+    text = f"wrote {path}" + (f" {detail}" if detail else "")
+    print(text, file=sys.stderr if data_on_stdout else sys.stdout)
+
+
 def write_atomically(path: str | Path, write: Callable[[str], None]) -> None:
     """Call ``write(tmp_path)`` then rename onto ``path``: never a half-written file.
 

@@ -416,14 +416,16 @@ def test_grid_csv_dict_and_curves() -> None:
     swept = sweep(rv, grid)
     assert swept.shape == (3, 2)
     lines = swept.to_csv().splitlines()
-    assert lines[0] == "links.1.efficiency,components.1.teeth,ratio,efficiency"
+    assert lines[0] == ("links.1.efficiency [-],components.1.teeth [-],ratio [-],"
+                        "efficiency [-]")
     assert lines[1].split(",")[:2] == ["0.9", "10"] and lines[2].split(",")[:2] == ["0.9", "12"]
     rows = np.loadtxt(io.StringIO(swept.to_csv()), delimiter=",", skiprows=1)
     # ratio 1 + z2 z5 / (z1 (z5 - z4)) = 1 + 36·40/z1
     np.testing.assert_allclose(rows[:, 2], 1 + 36 * 40 / rows[:, 1], rtol=REL)
     extra = swept.to_csv(extra=True).splitlines()[0].split(",")
-    assert extra[4:] == ["input_power", "output_power", "total_loss", "self_locking",
-                         "converged", "status", "loss_link_0", "loss_link_1", "loss_link_5"]
+    assert extra[4:] == ["input_power [W]", "output_power [W]", "total_loss [W]",
+                         "self_locking", "converged", "status", "loss_link_0 [W]",
+                         "loss_link_1 [W]", "loss_link_5 [W]"]
     data = swept.to_dict()
     assert data["shape"] == [3, 2] and data["status"] == ["ok"] * 6
     x, curves = swept.curves()

@@ -26,7 +26,9 @@ def run(capsys, *argv: str) -> tuple[int, str, str]:
 
 
 def rows(text: str) -> list[dict]:
-    return list(csv.DictReader(io.StringIO(text)))
+    """The CSV's rows by column name, the unit (``[W]``) taken off each header."""
+    return [{key.split(" [")[0]: value for key, value in row.items()}
+            for row in csv.DictReader(io.StringIO(text))]
 
 
 def test_grid_to_stdout_matches_single_solves(capsys) -> None:
@@ -54,6 +56,9 @@ def test_output_file_and_all_columns(capsys, tmp_path) -> None:
                            "-o", str(target), "--all-columns")
     assert status == 0, err
     assert f"wrote {target}" in out
+    header = target.read_text().splitlines()[0].split(",")
+    assert header[:3] == ["links.*.efficiency [-]", "ratio [-]", "efficiency [-]"]
+    assert {"input_power [W]", "total_loss [W]", "loss_link_1 [W]", "status"} <= set(header)
     table = rows(target.read_text())
     assert len(table) == 2
     assert {"input_power", "output_power", "total_loss", "self_locking", "converged",
@@ -143,3 +148,13 @@ def test_two_workers_print_the_same_table(capsys) -> None:
     status_2, on_cluster, err = run(capsys, *argv, "--workers", "2")
     assert status == status_2 == 0, err
     assert on_cluster == alone
+
+
+def test_port_columns_carry_si_units(capsys) -> None:
+    """A speed given in rpm is written in rad/s, and its header says so (1500 rpm =
+    1500·2π/60 = 157.0796 rad/s)."""
+    status, out, err = run(capsys, RV40E, "--set", "ports.0.speed=1500rpm", "--quiet")
+    assert status == 0, err
+    header, row = out.splitlines()[:2]
+    assert header.split(",")[0] == "ports.0.speed [rad/s]"
+    assert float(row.split(",")[0]) == pytest.approx(1500 * 2 * 3.141592653589793 / 60)

@@ -30,7 +30,7 @@ def test_table_lists_trains_within_the_tolerance(capsys) -> None:
     lines = out.splitlines()
     assert lines[0].startswith("synthesis for ratio 5 ± 0.50%")
     header = next(line for line in lines if line.startswith("train"))
-    for column in ("ratio", "eff %", "back %", "locks back", "circ. W", "max Pv/P", "meshes"):
+    for column in ("ratio", "eff. %", "back %", "locks back", "circ. W", "max Pv/P", "meshes"):
         assert column in header
 
 
@@ -97,3 +97,33 @@ def test_workers_and_scheduler_exclude_each_other(capsys) -> None:
     with pytest.raises(SystemExit) as exit_info:
         main(["synthesize", "--ratio", "5", "--workers", "2", "--scheduler", "dask://h:1"])
     assert exit_info.value.code == 2
+
+
+def test_file_stems_are_cut_between_words() -> None:
+    from powergraph.cli.cmd_synthesize import file_stem
+
+    name = "Simpson / two 2K-H stages (6-link d-graph 7 (r-graph 3)) simple+simple: sun L1 in"
+    stem = file_stem(name, limit=60)
+    words = name.replace("/", " ").replace("-", " ").replace("(", " ").replace(")", " ")
+    assert len(stem) <= 60 and set(stem.split("_")) <= set(words.replace(":", " ")
+                                                            .replace("+", " ").split())
+    assert stem == "Simpson_two_2K_H_stages_6_link_d_graph_7_r_graph_3_simple"
+
+
+@pytest.mark.slow  # a synthesis over the 6-link graphs (about 30 s)
+def test_no_two_rows_read_the_same(capsys, tmp_path) -> None:
+    """Two d-graphs that differ only in which planets share a pin give the same gears and
+    figures: the row names must still differ (the pin note), and each row its file."""
+    status, out, err = run(capsys, "--ratio", "100", "--top", "8", "-o", str(tmp_path))
+    assert status == 0, err
+    lines = out.splitlines()
+    start = lines.index(next(x for x in lines if x.startswith("train")))
+    rows = [x for x in lines[start + 2:] if x.strip()][:8]
+    teeth = lines[lines.index(next(x for x in lines if x.startswith("#  teeth"))) + 2:][:8]
+    # the enumeration's graph number tells a reader nothing: drop it, rows must still differ
+    label = re.compile(r"\(?\d-link d-graph \d+ \(r-graph \d+\)\)?")
+    shown = [(label.sub("", row.split("  ")[0]), text.split("  ", 1)[-1])
+             for row, text in zip(rows, teeth)]
+    assert len(set(shown)) == len(shown)
+    assert len(list(tmp_path.glob("*.yaml"))) == 8
+    assert out.count("wrote ") == 8

@@ -8,6 +8,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from powergraph.format import csv_header
+
 #: Status codes of a variant (``SweepResult.status``), by value.
 STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
 OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED = range(6)
@@ -15,6 +17,10 @@ OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED = range(6)
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
                  "status")
+#: Unit of each CSV column in its header (``efficiency [-]``); flags and statuses have none.
+COLUMN_UNITS = {"ratio": "-", "efficiency": "-", "input_power": "W", "output_power": "W",
+                "total_loss": "W", "teeth": "-", "speed": "rad/s", "power": "W",
+                "torque": "N*m"}
 
 
 @dataclass(frozen=True)
@@ -167,7 +173,8 @@ class SweepResult:
         """Write the CSV (PATHs, ``ratio``, ``efficiency``; ``extra`` adds powers, losses
         and flags) to ``path`` (a file name or an open text file); return it when None.
 
-        NaN is written as ``nan``; ``status`` as its name.
+        Each header carries its unit (``links.1.efficiency [-]``, ``ports.0.speed
+        [rad/s]``, ``output_power [W]``); NaN is written as ``nan``; ``status`` as its name.
         """
         columns = self.columns(extra)
         if path is None:
@@ -228,11 +235,24 @@ CSV_BLOCK = 1 << 16
 def _write_csv(handle, columns: Mapping[str, np.ndarray]) -> None:
     """Header, then the rows, formatted and written block by block."""
     names = list(columns)
-    handle.write(",".join(_quoted(name) for name in names) + "\n")
+    handle.write(",".join(_quoted(csv_header(name, column_unit(name))) for name in names)
+                 + "\n")
     size = len(next(iter(columns.values()))) if columns else 0
     for start in range(0, size, CSV_BLOCK):
         cells = [_cells(name, columns[name][start:start + CSV_BLOCK]) for name in names]
         handle.write("\n".join(map(",".join, zip(*cells))) + "\n")
+
+
+def column_unit(name: str) -> str | None:
+    """The SI unit of a CSV column (a PATH's by its last part; ``-`` for a pure number).
+
+    >>> column_unit("ports.0.speed"), column_unit("links[1].efficiency"), column_unit("status")
+    ('rad/s', '-', None)
+    """
+    if name.startswith("loss_link_"):
+        return "W"
+    field = name.replace("]", "").replace("[", ".").rsplit(".", 1)[-1]
+    return COLUMN_UNITS.get(field)
 
 
 def _quoted(name: str) -> str:
@@ -248,6 +268,6 @@ def _cells(name: str, values: np.ndarray) -> list[str]:
         return [STATUS[s] for s in values.tolist()]
     if values.dtype == bool:
         return ["true" if v else "false" for v in values.tolist()]
-    if name.endswith(".teeth"):
+    if name.replace("]", "").endswith(".teeth"):
         return list(map(str, values.astype(np.int64).tolist()))
     return list(map(repr, values.astype(float).tolist()))

@@ -56,6 +56,7 @@ class TrainGraph:
     def to_model_dict(self, *, frame: int, inputs: tuple[int, ...], outputs: tuple[int, ...],
                       teeth: Mapping[tuple[int, int], int], internal: Mapping[int, int] = {},
                       mesh_efficiency: float = 1.0, name: str | None = None,
+                      names: Mapping[str, str] = {}, counts: Mapping[str, int] = {},
                       input_power: float = 1000.0, input_speed: float = 100.0) -> dict[str, Any]:
         """A powergraph model document (as :func:`powergraph.model.model_from_dict` takes).
 
@@ -70,6 +71,7 @@ class TrainGraph:
         teeth : ``{(pair, side): teeth}`` for every side of every gear pair
         internal : ``{pair: side}`` for internal pairs
         mesh_efficiency : the basic efficiency of every mesh
+        names, counts : ``name`` and ``count`` (identical planets) of components, by id
 
         Examples
         --------
@@ -94,6 +96,11 @@ class TrainGraph:
                     for u, v, _ in self.turning_pairs]
         couplings = [{"type": "coupling", "between": [f"L{u}", f"L{v}"]}
                      for u, v in self.couplings]
+        for cid, text in names.items():
+            components[cid] = {"name": text, **components[cid]}
+        for cid, count in counts.items():
+            if count > 1:
+                components[cid]["count"] = int(count)
         ports = [{"component": f"L{n}", "role": "input", "speed": input_speed,
                   **({"power": input_power} if i == 0 else {})} for i, n in enumerate(inputs)]
         ports += [{"component": f"L{n}", "role": "output"} for n in outputs]

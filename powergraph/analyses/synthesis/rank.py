@@ -16,11 +16,13 @@ each arrangement's best tooth set), meshes, and largest virtual power.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from typing import Any, Mapping
 
 import numpy as np
 
+from powergraph.analyses.synthesis.naming import (arrangement_name, gear_names, link_names,
+                                                  role_names, teeth_text)
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.analyses.synthesis.teeth import Layout
 
@@ -29,9 +31,10 @@ from powergraph.analyses.synthesis.teeth import Layout
 class SynthesisRow:
     """One arrangement at its best tooth set, with the ``compare`` table's figures.
 
-    ``teeth`` maps gear ids (``g0a``: side a of gear pair 0) to tooth numbers; ``rings``
-    lists the internal gears; ``candidates`` counts the feasible tooth sets of the
-    arrangement. Powers in W.
+    ``teeth`` maps gear ids (``g0a``: side a of gear pair 0) to tooth numbers and
+    ``gear_names`` the same ids to readable names (``sun L1``, ``planet L2``, ``ring L0``);
+    ``rings`` lists the internal gears; ``candidates`` counts the feasible tooth sets of
+    the arrangement. Powers in W.
     """
 
     name: str
@@ -54,6 +57,7 @@ class SynthesisRow:
     input_power: float
     candidates: int
     document: Mapping[str, Any]
+    gear_names: Mapping[str, str] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         """Every field but the model document (see :meth:`model_document`)."""
@@ -61,45 +65,18 @@ class SynthesisRow:
         out.pop("document")
         out["teeth"] = dict(self.teeth)
         out["rings"] = list(self.rings)
+        out["gear_names"] = dict(self.gear_names)
         return out
+
+    def teeth_text(self) -> str:
+        """``sun L1=12, planet L2=45, ring L0=102`` (gear ids where no name is known)."""
+        return teeth_text(self.teeth, self.gear_names)
 
     def model_document(self) -> dict[str, Any]:
         """The powergraph model of this train (``model_from_dict`` takes it)."""
         import copy
 
         return copy.deepcopy(dict(self.document))
-
-
-def role_names(layout: Layout) -> dict[int, str]:
-    """A readable role per coaxial link: ``carrier``, ``sun``, ``ring``, ``crank``,
-    ``output disk`` (coupled), joined by ``+`` for a link with several."""
-    st, graph = layout.structure, layout.graph
-    internal = layout.internal
-    roles: dict[int, list[str]] = {c: [] for c in st.coaxial}
-    for k, (u, v, carrier) in enumerate(graph.gear_pairs):
-        if carrier in roles:
-            name = "crank" if st.kinds[k] == "khv" else "carrier"
-            if name not in roles[carrier]:
-                roles[carrier].append(name)
-        side = st.coaxial_side[k]
-        if side is not None:
-            link = (u, v)[side]
-            name = "ring" if internal.get(k) == side else "sun"
-            if name not in roles[link]:
-                roles[link].append(name)
-    for u, v in graph.couplings:
-        for link in (u, v):
-            if link in roles:
-                roles[link].append("output disk")
-    return {c: "+".join(r) or "link" for c, r in roles.items()}
-
-
-def arrangement_name(layout: Layout, fixed: int, input_: int, output: int) -> str:
-    """E.g. ``2K-H simple: sun L1 in, carrier L3 out, ring L0 fixed``."""
-    roles = role_names(layout)
-    graph = layout.graph.name or f"{layout.graph.links}-link"
-    return (f"{graph} {layout.name}: {roles[input_]} L{input_} in, {roles[output]} L{output} "
-            f"out, {roles[fixed]} L{fixed} fixed")
 
 
 def gear_teeth(layout: Layout, flat: np.ndarray) -> dict[str, np.ndarray]:
@@ -152,17 +129,25 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
         circulating_power=float(single.circulating_power),
         max_virtual_power_ratio=None if np.isnan(pv[best]) else float(pv[best]),
         meshes=len(graph.gear_pairs), input_power=float(forward.input_power[best]),
-        candidates=int(working.sum()), document=doc)
+        candidates=int(working.sum()), document=doc,
+        gear_names=gear_names(layout))
 
 
 def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficiency: float
               ) -> dict[str, Any]:
     pairs = {(int(g[1:-1]), "ab".index(g[-1])): z for g, z in teeth.items()}
     name = arrangement_name(layout, hits.fixed, hits.input, hits.output)
+    names = {f"L{n}": text for n, text in link_names(layout, hits.fixed).items()}
+    names.update(gear_names(layout))
+    planets = set(layout.structure.planets())
+    counts = {f"L{p}": layout.planets for p in planets}
+    counts.update({g: layout.planets for g, text in gear_names(layout).items()
+                   if int(text.split(" L")[-1]) in planets})
     return layout.graph.to_model_dict(frame=hits.fixed, inputs=(hits.input,),
                                       outputs=(hits.output,), teeth=pairs,
                                       internal=layout.internal,
-                                      mesh_efficiency=mesh_efficiency, name=name)
+                                      mesh_efficiency=mesh_efficiency, name=name,
+                                      names=names, counts=counts)
 
 
 def _idle(result, mesh_efficiency: float, meshes: int) -> np.ndarray:

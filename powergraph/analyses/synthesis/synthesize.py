@@ -103,10 +103,9 @@ class SynthesisResult:
         else:
             lines.append(self.comparison().text_report())
             lines.append("")
-            cells = [["#", "teeth", "rings"]]
+            cells = [["#", "teeth"]]
             for i, row in enumerate(self.rows, 1):
-                cells.append([str(i), " ".join(f"{g}={z}" for g, z in row.teeth.items()),
-                              " ".join(row.rings) or "-"])
+                cells.append([str(i), row.teeth_text()])
             lines += aligned_table(cells, {0})
         if self.skipped:
             lines.append("")

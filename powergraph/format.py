@@ -1,0 +1,156 @@
+"""How numbers are written for a person: the one copy every text report and command uses.
+
+- :func:`format_number`, :func:`format_fixed` — significant digits or fixed decimals, never
+  ``-0``, ``-`` for a missing value;
+- :func:`format_ratio` — a reduction as ``121 : 1``, a step-up as ``1 : 100``;
+- :func:`unit_scale` and :func:`format_column` — one unit for a whole column, chosen from
+  its largest value (``W`` or ``kW``, ``mm³`` or ``L``...), so a column never mixes units;
+- :func:`aligned_table` — rows padded to widths computed from their cells, so long names
+  never run into the next column;
+- :func:`csv_header` — a column name with its unit, ``output_power [W]``.
+
+This module sits in the base layer and imports nothing heavy, so every layer may use it.
+
+Examples
+--------
+>>> format_ratio(121.00000000000075), format_ratio(0.01), format_ratio(-119.0)
+('121 : 1', '1 : 100', '-119 : 1')
+>>> format_number(-0.0), format_number(-1e-13, zero=1e-9), format_number(None)
+('0', '0', '-')
+>>> format_column([2270.0, 652.34, 1617.66], POWER_UNITS)
+('kW', ['2.27', '0.6523', '1.618'])
+"""
+from __future__ import annotations
+
+import math
+from typing import Iterable, Sequence
+
+#: (unit, size of one unit in the base unit), smallest first.
+POWER_UNITS = (("mW", 1e-3), ("W", 1.0), ("kW", 1e3), ("MW", 1e6))
+VOLUME_UNITS = (("mm³", 1.0), ("L", 1e6), ("m³", 1e9))
+TORQUE_UNITS = (("N·m", 1.0), ("kN·m", 1e3))
+
+
+def _missing(value: object) -> bool:
+    return value is None or (isinstance(value, float) and math.isnan(value))
+
+
+def format_number(value: float | None, digits: int = 4, zero: float = 0.0) -> str:
+    """``value`` with ``digits`` significant digits; ``0`` for anything within ``zero`` of
+    zero (never ``-0``), ``-`` for None or NaN, thousands separated by commas.
+
+    >>> [format_number(v) for v in (1617.66, -0.0, 0.000123456, float("nan"), 1.5e7)]
+    ['1,618', '0', '0.0001235', '-', '15,000,000']
+    """
+    if _missing(value):
+        return "-"
+    value = float(value)
+    if math.isinf(value):
+        return "inf" if value > 0 else "-inf"
+    if abs(value) <= zero or float(f"{value:.{digits}g}") == 0.0:
+        return "0"
+    if 1000 <= abs(value) < 1e15:
+        decimals = digits - 1 - math.floor(math.log10(abs(value)))
+        return f"{round(value, decimals):,.{max(decimals, 0)}f}"
+    return f"{value:.{digits}g}"
+
+
+def format_fixed(value: float | None, decimals: int = 2) -> str:
+    """``value`` with a fixed number of decimals (a column of percentages), never ``-0``;
+    ``-`` for None or NaN.
+
+    >>> [format_fixed(v) for v in (93.0, -0.001, 55.4321, None)]
+    ['93.00', '0.00', '55.43', '-']
+    """
+    if _missing(value):
+        return "-"
+    text = f"{float(value):,.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text.replace(",", "")) == 0 else text
+
+
+def format_ratio(ratio: float | None, digits: int = 4) -> str:
+    """A speed ratio (input speed / output speed) as a person reads it: a reduction as
+    ``N : 1``, a step-up (``|ratio| < 1``) as ``1 : N``; the sign (output turning the other
+    way) stays on the first number. ``-`` when there is no ratio.
+
+    >>> [format_ratio(r) for r in (121.0, 4, 0.01, -0.25, 99.75, 1.0, None)]
+    ['121 : 1', '4 : 1', '1 : 100', '-1 : 4', '99.75 : 1', '1 : 1', '-']
+    >>> format_ratio(0.0), format_ratio(float("inf"))
+    ('0 : 1', '1 : 0')
+    """
+    if _missing(ratio):
+        return "-"
+    ratio = float(ratio)
+    if math.isinf(ratio):
+        return "1 : 0" if ratio > 0 else "-1 : 0"
+    if ratio == 0.0:
+        return "0 : 1"
+    if abs(ratio) >= 1.0:
+        return f"{format_number(ratio, digits)} : 1"
+    sign = "-" if ratio < 0 else ""
+    return f"{sign}1 : {format_number(1.0 / abs(ratio), digits)}"
+
+
+def unit_scale(values: Iterable[float | None], units: Sequence[tuple[str, float]]
+               ) -> tuple[str, float]:
+    """The one unit of ``units`` (``(name, size)``, smallest first) for a whole column:
+    the largest unit in which the column's largest magnitude is at least 0.1 (so no value
+    needs more than four digits before the point).
+
+    >>> unit_scale([135.07, 1482.58], POWER_UNITS), unit_scale([0.0], POWER_UNITS)
+    (('kW', 1000.0), ('W', 1.0))
+    >>> unit_scale([99.0], POWER_UNITS), unit_scale([652.3], POWER_UNITS)
+    (('W', 1.0), ('kW', 1000.0))
+    """
+    finite = [abs(float(v)) for v in values if not _missing(v) and math.isfinite(float(v))]
+    largest = max(finite, default=0.0)
+    base = next((u for u in units if u[1] == 1.0), units[0])
+    if largest == 0.0:
+        return base
+    chosen = units[0]
+    for unit in units:
+        if largest >= 0.1 * unit[1]:
+            chosen = unit
+    return chosen
+
+
+def format_column(values: Sequence[float | None], units: Sequence[tuple[str, float]],
+                  digits: int = 4) -> tuple[str, list[str]]:
+    """``(unit, texts)``: the column's values in its one unit (see :func:`unit_scale`).
+
+    >>> format_column([634313.9, None], VOLUME_UNITS)
+    ('L', ['0.6343', '-'])
+    """
+    unit, size = unit_scale(values, units)
+    zero = 1e-9 * max((abs(float(v)) for v in values if not _missing(v)
+                       and math.isfinite(float(v))), default=0.0)
+    return unit, [format_number(None if _missing(v) else float(v) / size, digits,
+                                zero=zero / size) for v in values]
+
+
+def aligned_table(rows: list[list[str]], numeric: set[int],
+                  rules_after: tuple[int, ...] = (0,)) -> list[str]:
+    """Text rows padded to common column widths: ``numeric`` columns right-aligned, the
+    others left-aligned, a dashed rule after each row index in ``rules_after``.
+
+    >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
+    ['a   n', '--  -', 'bb  1']
+    """
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    lines = []
+    for index, row in enumerate(rows):
+        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
+                               for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
+        if index in rules_after:
+            lines.append("  ".join("-" * w for w in widths))
+    return lines
+
+
+def csv_header(name: str, unit: str | None) -> str:
+    """A CSV column name with its unit in brackets (``[-]`` for a pure number); a column
+    without a unit (a flag, a status) keeps its bare name.
+
+    >>> csv_header("output_power", "W"), csv_header("efficiency", "-"), csv_header("status", None)
+    ('output_power [W]', 'efficiency [-]', 'status')
+    """
+    return name if unit is None else f"{name} [{unit}]"
