@@ -101,7 +101,7 @@ class TrainGraph:
         for cid, count in counts.items():
             if count > 1:
                 components[cid]["count"] = int(count)
-        ports = [{"component": f"L{n}", "role": "input", "speed": input_speed,
+        ports = [{"component": f"L{n}", "role": "input", "speed": f"{input_speed!r} rad/s",
                   **({"power": input_power} if i == 0 else {})} for i, n in enumerate(inputs)]
         ports += [{"component": f"L{n}", "role": "output"} for n in outputs]
         return {"name": name or self.name or f"{self.links}-link train",
