@@ -17,7 +17,7 @@ heavy, so any layer may use it.
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> isinstance(result, Result)                                # doctest: +SKIP
 True
 >>> aligned_table([["a", "n"], ["bb", "1"]], {1})

@@ -1,4 +1,5 @@
-"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]``."""
+"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
+[--backdrive]``."""
 from __future__ import annotations
 
 import argparse
@@ -21,11 +22,20 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "paper's split/virtual power method, RV-type trains)")
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="override every mesh's basic efficiency")
+    _result_options(parser)
     parser.set_defaults(handler=run)
+
+
+def _result_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--backdrive", action="store_true",
+                        help="report the train driven from its output: the output becomes "
+                             "the input and is fed the power the forward solve takes in")
 
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
+    if args.backdrive:
+        model = _backdriven(model)
     if args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 
@@ -46,6 +56,18 @@ def run(args: argparse.Namespace) -> int:
             print()
             print(fluctuation.text_report())
     return 0
+
+
+def _backdriven(model):
+    """The model driven from its output at the forward input power (one input, one output)."""
+    from powergraph.errors import UsageError
+    from powergraph.kinematics.variants import backdriven
+    from powergraph.statics import solve
+
+    if len(model.inputs) != 1 or len(model.outputs) != 1:
+        raise UsageError("--backdrive needs a train with one input and one output port "
+                         f"(this one has {len(model.inputs)} and {len(model.outputs)})")
+    return backdriven(model, solve(model).input_power)
 
 
 def _cycloid_fluctuation(model):

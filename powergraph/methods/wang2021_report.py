@@ -7,7 +7,7 @@ Examples
 --------
 >>> from powergraph.model import load_model
 >>> from powergraph.methods.wang2021 import solve_wang2021
->>> result = solve_wang2021(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> result = solve_wang2021(load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> data = result_to_dict(result)                                # doctest: +SKIP
 >>> data["method"], [round(x, 2) for x in data["losses"]]        # doctest: +SKIP
 ('wang2021', [136.2, 131.52])
