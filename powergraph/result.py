@@ -25,6 +25,7 @@ True
 """
 from __future__ import annotations
 
+import unicodedata
 from typing import Any, Protocol, runtime_checkable
 
 from powergraph.errors import PowerGraphError
@@ -69,11 +70,32 @@ def aligned_table(rows: list[list[str]], numeric: set[int],
     >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
     ['a   n', '--  -', 'bb  1']
     """
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    widths = [max(display_width(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = []
     for index, row in enumerate(rows):
-        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
+        lines.append("  ".join(pad(cell, w, i in numeric)
                                for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
         if index in rules_after:
             lines.append("  ".join("-" * w for w in widths))
     return lines
+
+
+def display_width(text: str) -> int:
+    """Columns ``text`` takes in a terminal (wide East Asian characters count 2, combining
+    marks 0).
+
+    >>> display_width("ab"), display_width("齿轮"), display_width("é")
+    (2, 4, 1)
+    """
+    width = 0
+    for char in text:
+        if unicodedata.combining(char):
+            continue
+        width += 2 if unicodedata.east_asian_width(char) in ("W", "F") else 1
+    return width
+
+
+def pad(text: str, width: int, right: bool = False) -> str:
+    """``text`` padded with spaces to ``width`` display columns."""
+    fill = " " * max(0, width - display_width(text))
+    return fill + text if right else text + fill

@@ -13,31 +13,11 @@ Examples
 from __future__ import annotations
 
 import math
-import unicodedata
 from typing import Sequence
 
+from powergraph.result import display_width, pad
+
 SIGNIFICANT = 6
-
-
-def display_width(text: str) -> int:
-    """Columns ``text`` takes in a terminal (wide East Asian characters count 2, combining
-    marks 0).
-
-    >>> display_width("ab"), display_width("齿轮"), display_width("é")
-    (2, 4, 1)
-    """
-    width = 0
-    for char in text:
-        if unicodedata.combining(char):
-            continue
-        width += 2 if unicodedata.east_asian_width(char) in ("W", "F") else 1
-    return width
-
-
-def pad(text: str, width: int, right: bool = False) -> str:
-    """``text`` padded with spaces to ``width`` display columns."""
-    fill = " " * max(0, width - display_width(text))
-    return fill + text if right else text + fill
 
 
 def table(rows: Sequence[Sequence[str]], numeric: set[int], indent: str = "  ") -> list[str]:
