@@ -157,7 +157,7 @@ def measure(n: int, n_loop: int, repeat: int, seed: int) -> dict:
     swept, hand = evaluate(values, quiet=True), closed_form(*args)
     if not (np.all(hand["valid"]) and np.all(swept.converged)):
         raise SystemExit("a variant left the closed form's direction pattern")
-    diff = max(np.max(np.abs(swept.efficiency - hand["efficiency"])),
+    diff = max(np.max(np.abs(swept.formal_efficiency - hand["efficiency"])),
                np.max(np.abs(swept.ratio - hand["ratio"])))
     loop_s, rows = loop(model, values, n_loop)
     loop_diff = max(np.max(np.abs(rows[:, 0] - swept.ratio[:n_loop])),

@@ -265,11 +265,12 @@ def _mesh_table(result: PowerFlowResult) -> list[str]:
     if not meshes:
         return ["  (none)"]
     raw = result.model.raw_id
-    unit, scale = power_unit([e.carrier_frame_power for e in meshes] + [e.loss for e in meshes])
+    unit, scale = power_unit([e.carrier_frame_power for e in meshes])
     virtual = column([e.carrier_frame_power for e in meshes], scale)
-    loss = column([e.loss for e in meshes], scale)
+    loss_unit, loss_scale = power_unit([e.loss for e in meshes])
+    loss = column([e.loss for e in meshes], loss_scale)
     rows = [["link", "between", "carrier", "eta", "driver", f"virtual power {unit}",
-             f"loss {unit}"]]
+             f"loss {loss_unit}"]]
     for k, e in enumerate(meshes):
         name = getattr(result.model.links[e.link], "name", None)
         rows.append([f"{e.link}" + (f" ({name})" if name else ""), f"{raw(e.a)}-{raw(e.b)}",
