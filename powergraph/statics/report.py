@@ -16,8 +16,8 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
     ``load_sharing_assumed``, ``lock`` (null, or why the train cannot move as asked:
     docs/locking.md) and ``directions`` (null, or how the search found the directions
     when the fixed-point iteration cycled), ``ports`` (each port's speed, torque and power,
-    positive into the train), ``formal_efficiency``, ``efficiency_note``, ``losses`` (where
-    the power goes) and ``warnings``.
+    positive into the train), ``formal_efficiency``, ``efficiency_note``,
+    ``loss_breakdown`` (where the power goes) and ``warnings``.
 
     Component ids in lists (``between``, ``carrier``, ``driver``) are written as in the
     model file; dictionary keys are their string forms.
@@ -47,7 +47,8 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "formal_efficiency": _finite(result.formal_efficiency),
         "efficiency_note": result.efficiency_note,
         "ports": [p.to_dict(raw) for p in result.ports],
-        "losses": [{"source": source, "power": loss} for source, loss in loss_sources(result)],
+        "loss_breakdown": [{"source": source, "power": loss}
+                           for source, loss in loss_sources(result)],
         "warnings": [str(caveat) for caveat in result.warnings],
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,

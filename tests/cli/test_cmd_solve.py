@@ -135,7 +135,8 @@ def test_first_run_is_a_believable_rv40e(capsys) -> None:
     # conservation: the ports' powers (positive into the train) add up to the losses,
     # and the losses table to the total loss
     assert sum(p["power"] for p in out["ports"]) == pytest.approx(out["total_loss"], rel=1e-9)
-    assert sum(x["power"] for x in out["losses"]) == pytest.approx(out["total_loss"], rel=1e-12)
+    assert sum(x["power"] for x in out["loss_breakdown"]) == pytest.approx(out["total_loss"],
+                                                                        rel=1e-12)
     assert main(["solve", FIRST_RUN]) == 0
     text = capsys.readouterr().out
     assert "where the power goes" in text and "pins" in text and "crank bearings" in text
@@ -146,7 +147,7 @@ def test_json_keeps_every_key_and_adds_ports_and_warnings(capsys) -> None:
     assert main(["solve", RV, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert FORMAT_KEYS | {"ports", "warnings", "formal_efficiency", "efficiency_note",
-                          "losses", "passes", "load_sharing_assumed"} <= set(out)
+                          "loss_breakdown", "passes", "load_sharing_assumed"} <= set(out)
     for port in out["ports"]:
         assert set(port) == {"component", "name", "role", "speed", "torque", "power",
                              "direction"}
