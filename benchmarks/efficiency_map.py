@@ -1,6 +1,6 @@
 """Efficiency maps of two RV-40Es, 50 × 50 points, against single solves in the same run.
 
-**Friction RV** (the goal: its 50 × 50 map in under 2 s): ``models/rv40e_friction.yaml`` —
+**Friction RV** (the goal: its 50 × 50 map in under 2 s): ``models/rv40e.yaml`` —
 ISO/TR 14179-2 on the first stage (load-dependent: every point is its own fixed point),
 pins and crank bearings on the cycloid mesh, crank-support bearing friction and drags. Its
 map runs the load-dependent passes on the whole grid at once
@@ -16,7 +16,7 @@ map runs the load-dependent passes on the whole grid at once
   ``--loop-rows`` rows, extrapolated to the whole map, and
   ``friction_max_rel_diff_vs_loop`` between the two on those rows.
 
-**Affine RV**: ``models/rv40e.yaml`` with, written here: the first-stage mesh given
+**Affine RV**: ``models/rv40e_wang2021.yaml`` with, written here: the first-stage mesh given
 ``friction: {mu: 0.05}`` and ``geometry: {module: 1.5, shifts: [0.3, -0.3]}``; the two crank
 bearings in the planet frame (``bearing [3, 7]``, mu 0.0015, bore 20 mm, drag 0.05 N·m
 each); the input shaft's bearing and seal (``bearing [1, 0]``, drag 0.1 N·m + 0.0005 N·m
@@ -53,7 +53,7 @@ from powergraph.model import model_from_dict  # noqa: E402
 
 def affine_model():
     """The RV-40E with constant mesh friction, bearings and drags (written above)."""
-    data = yaml.safe_load((ROOT / "models" / "rv40e.yaml").read_text())
+    data = yaml.safe_load((ROOT / "models" / "rv40e_wang2021.yaml").read_text())
     first = data["links"][0]
     first.pop("efficiency", None)
     first.update(friction={"mu": 0.05}, geometry={"module": 1.5, "shifts": [0.3, -0.3]})
@@ -92,7 +92,7 @@ def main() -> int:
 
     torques = np.linspace(50.0, 800.0, args.torques)
     speeds = np.linspace(100.0, 3000.0, args.speeds)
-    friction = pg.load_model(ROOT / "models" / "rv40e_friction.yaml")
+    friction = pg.load_model(ROOT / "models" / "rv40e.yaml")
     single = single_solve(friction, args.repeat)
     efficiency_map(friction, torques[:2], speeds[:2])                  # warm-up
     map_s, emap = best_of(args.repeat, lambda: efficiency_map(friction, torques, speeds))

@@ -46,10 +46,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--sizes", type=int, nargs="+", default=[10_000, 100_000])
     args = parser.parse_args()
-    rv = ROOT / "models" / "rv40e.yaml"
+    rv = ROOT / "models" / "rv40e_wang2021.yaml"
     load_model(rv)
     baseline = min(timed(load_model, rv)[0] for _ in range(5))
-    print(f"baseline: load_model(rv40e.yaml) {baseline * 1e3:.2f} ms")
+    print(f"baseline: load_model(rv40e_wang2021.yaml) {baseline * 1e3:.2f} ms")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for n in args.sizes:

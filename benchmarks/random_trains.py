@@ -65,7 +65,7 @@ def main() -> None:
     parser.add_argument("--brute-limit", type=int, default=10)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
-    rv = pg.load_model(ROOT / "models" / "rv40e.yaml")
+    rv = pg.load_model(ROOT / "models" / "rv40e_wang2021.yaml")
     pg.solve(rv)
     start = time.perf_counter()
     for _ in range(50):

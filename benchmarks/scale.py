@@ -17,7 +17,7 @@ solved with ``powergraph.statics.solve``:
   η_b = (1 + k) η_sp η_pr/(η_sp η_pr + k)), joined carrier to carrier and sun to sun.
 
 Each size prints the load time, the solve time, the total, the total over one RV-40E solve
-(load and solve of models/rv40e.yaml measured in the same run), and whether the result
+(load and solve of models/rv40e_wang2021.yaml measured in the same run), and whether the result
 matches its closed form to 1e-9 relative; each family its growth exponents (least squares
 of log time over log size on its three largest sizes, for load and solve together and for
 the solve alone; linear is 1).
@@ -129,7 +129,7 @@ def main() -> None:
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
 
-    rv = ROOT / "models" / "rv40e.yaml"
+    rv = ROOT / "models" / "rv40e_wang2021.yaml"
     solve(load_model(rv))  # one-time imports (scipy for the large trains) are not
     solve(loads_model(chain_text(500)))  # part of any size
 

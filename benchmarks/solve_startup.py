@@ -1,4 +1,4 @@
-"""Whole-process time of `powergraph solve models/rv40e.yaml --json`, against a baseline
+"""Whole-process time of `powergraph solve models/rv40e_wang2021.yaml --json`, against a baseline
 `python -c pass` measured in the same run (goal: < 0.5 s).
 
 Usage: python benchmarks/solve_startup.py [--repeat N] [--json]
@@ -33,7 +33,7 @@ def main() -> None:
     args = parser.parse_args()
     exe = shutil.which("powergraph")
     solve = [exe] if exe else [sys.executable, "-m", "powergraph.cli.main"]
-    solve += ["solve", "models/rv40e.yaml", "--json"]
+    solve += ["solve", "models/rv40e_wang2021.yaml", "--json"]
     wall_times(solve, 1)  # warm the file cache
     baseline = statistics.median(wall_times([sys.executable, "-c", "pass"], args.repeat))
     measured = statistics.median(wall_times(solve, args.repeat))

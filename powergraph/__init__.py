@@ -17,7 +17,7 @@ stays cheap for the command line.
 Examples
 --------
 >>> import powergraph as pg
->>> model = pg.load_model("models/rv40e.yaml")          # doctest: +SKIP
+>>> model = pg.load_model("models/rv40e_wang2021.yaml")          # doctest: +SKIP
 >>> result = pg.solve(model)                             # doctest: +SKIP
 >>> round(result.ratio, 6)                               # doctest: +SKIP
 121.0

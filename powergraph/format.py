@@ -23,6 +23,7 @@ Examples
 from __future__ import annotations
 
 import math
+import unicodedata
 from typing import Iterable, Sequence
 
 #: (unit, size of one unit in the base unit), smallest first.
@@ -136,10 +137,10 @@ def aligned_table(rows: list[list[str]], numeric: set[int],
     >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
     ['a   n', '--  -', 'bb  1']
     """
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    widths = [max(display_width(row[i]) for row in rows) for i in range(len(rows[0]))]
     lines = []
     for index, row in enumerate(rows):
-        lines.append("  ".join(cell.rjust(w) if i in numeric else cell.ljust(w)
+        lines.append("  ".join(pad(cell, w, i in numeric)
                                for i, (cell, w) in enumerate(zip(row, widths))).rstrip())
         if index in rules_after:
             lines.append("  ".join("-" * w for w in widths))
@@ -154,3 +155,24 @@ def csv_header(name: str, unit: str | None) -> str:
     ('output_power [W]', 'efficiency [-]', 'status')
     """
     return name if unit is None else f"{name} [{unit}]"
+
+
+def display_width(text: str) -> int:
+    """Columns ``text`` takes in a terminal (wide East Asian characters count 2, combining
+    marks 0).
+
+    >>> display_width("ab"), display_width("齿轮"), display_width("é")
+    (2, 4, 1)
+    """
+    width = 0
+    for char in text:
+        if unicodedata.combining(char):
+            continue
+        width += 2 if unicodedata.east_asian_width(char) in ("W", "F") else 1
+    return width
+
+
+def pad(text: str, width: int, right: bool = False) -> str:
+    """``text`` padded with spaces to ``width`` display columns."""
+    fill = " " * max(0, width - display_width(text))
+    return fill + text if right else text + fill

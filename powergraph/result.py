@@ -17,7 +17,7 @@ heavy, so any layer may use it.
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> isinstance(result, Result)                                # doctest: +SKIP
 True
 >>> aligned_table([["a", "n"], ["bb", "1"]], {1})
@@ -28,7 +28,7 @@ from __future__ import annotations
 from typing import Any, Protocol, runtime_checkable
 
 from powergraph.errors import PowerGraphError
-from powergraph.format import aligned_table  # noqa: F401  (re-exported: older imports)
+from powergraph.format import aligned_table, display_width, pad  # noqa: F401  (re-exported)
 
 
 @runtime_checkable

@@ -23,7 +23,7 @@ Examples
 --------
 >>> import powergraph as pg
 >>> from powergraph.testing import assert_conservation
->>> assert_conservation(pg.solve(pg.load_model("models/rv40e.yaml")))   # doctest: +SKIP
+>>> assert_conservation(pg.solve(pg.load_model("models/rv40e_wang2021.yaml")))   # doctest: +SKIP
 """
 from __future__ import annotations
 

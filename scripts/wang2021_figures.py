@@ -2,7 +2,7 @@
 
 Usage::
 
-    python scripts/wang2021_figures.py [-o docs/img] [--model models/rv40e.yaml]
+    python scripts/wang2021_figures.py [-o docs/img] [--model models/rv40e_wang2021.yaml]
 
 Writes, for the model (default the RV-40E):
 
@@ -72,8 +72,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("-o", "--output", default=str(ROOT / "docs" / "img"),
                         help="folder for the PNG and SVG files (default docs/img)")
-    parser.add_argument("--model", default=str(ROOT / "models" / "rv40e.yaml"),
-                        help="RV-type model file (default models/rv40e.yaml)")
+    parser.add_argument("--model", default=str(ROOT / "models" / "rv40e_wang2021.yaml"),
+                        help="RV-type model file (default models/rv40e_wang2021.yaml)")
     args = parser.parse_args(argv)
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)

@@ -26,13 +26,13 @@ def _solved(name: str):
 
 
 def _power_flow():
-    return _solved("rv40e.yaml")
+    return _solved("rv40e_wang2021.yaml")
 
 
 def _wang2021():
     from powergraph.methods import solve_wang2021
 
-    result = solve_wang2021(pg.load_model(MODELS / "rv40e.yaml"))
+    result = solve_wang2021(pg.load_model(MODELS / "rv40e_wang2021.yaml"))
     assert_conservation(result.virtual_power_result)
     assert_conservation(result.realisation)
     return result
@@ -41,7 +41,7 @@ def _wang2021():
 def _method_comparison():
     from powergraph.methods import compare_methods
 
-    comparison = compare_methods(pg.load_model(MODELS / "rv40e.yaml"))
+    comparison = compare_methods(pg.load_model(MODELS / "rv40e_wang2021.yaml"))
     assert_conservation(comparison.rigorous)
     return comparison
 
@@ -49,7 +49,7 @@ def _method_comparison():
 def _figure():
     from powergraph.methods.figures import cycloid_ratio_curves
 
-    return cycloid_ratio_curves(pg.load_model(MODELS / "rv40e.yaml"), z5_values=[30, 40])
+    return cycloid_ratio_curves(pg.load_model(MODELS / "rv40e_wang2021.yaml"), z5_values=[30, 40])
 
 
 def _comparison_table():
@@ -96,7 +96,7 @@ def _cycloid_train():
 def _volume():
     from powergraph.analyses.volume import volume
 
-    return volume(pg.load_model(MODELS / "rv40e.yaml"))
+    return volume(pg.load_model(MODELS / "rv40e_wang2021.yaml"))
 
 
 def _pitch_circle_errors():
@@ -108,7 +108,7 @@ def _pitch_circle_errors():
 def _sweep():
     from powergraph.analyses.sweep import sweep
 
-    return sweep(pg.load_model(MODELS / "rv40e.yaml"),
+    return sweep(pg.load_model(MODELS / "rv40e_wang2021.yaml"),
                  {"links.1.efficiency": [0.94, 0.97, 0.998]}, quiet=True)
 
 

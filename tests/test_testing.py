@@ -23,7 +23,7 @@ from powergraph.testing import (
     assert_power_balance,
 )
 
-RV = Path(__file__).resolve().parents[1] / "models" / "rv40e.yaml"
+RV = Path(__file__).resolve().parents[1] / "models" / "rv40e_wang2021.yaml"
 
 
 @pytest.fixture(scope="module")

@@ -7,13 +7,14 @@ always matches ``powergraph solve`` exactly.
 Examples
 --------
 >>> from powergraph.model import load_model
->>> rows = compare_models([load_model("models/rv40e.yaml")], mesh_efficiency=0.99)  # doctest: +SKIP
+>>> rows = compare_models([load_model("models/rv40e_wang2021.yaml")], mesh_efficiency=0.99)  # doctest: +SKIP
 >>> rows[0].ratio                                                                   # doctest: +SKIP
 121.0
 >>> print(rows.text_report())                                                       # doctest: +SKIP
 """
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 from typing import Any, Iterable, Iterator
 
@@ -39,11 +40,14 @@ COLUMNS = (("name", "train", "text"), ("ratio", "ratio", "ratio"),
 class ComparisonRow:
     """One train's figures of merit (powers in W, volume in mm³, density in kW/L).
 
+    ``efficiency`` and ``backdrive_efficiency`` are read from the actual flows, as
+    ``solve`` reports them (power out at the ports / power in at the ports: 0 when the
+    train self-locks that way); ``formal_efficiency`` and ``backdrive_formal_efficiency``
+    are declared output / declared input, the papers' figure, negative when it self-locks.
     ``backdrive_efficiency`` is None (with ``backdrive_note``) where back-driving is not
-    defined (several inputs or outputs). A self-locking back-drive keeps its formal
-    efficiency (<= 0) with ``backdrive_self_locking`` True; a back-drive that locks
-    (no consistent direction pattern: docs/locking.md) has efficiency 0 and the locking
-    reason in ``backdrive_note``.
+    defined (several inputs or outputs); a back-drive that locks (no consistent direction
+    pattern: docs/locking.md) has efficiency 0 and the locking reason in
+    ``backdrive_note``.
     """
 
     name: str
@@ -62,6 +66,8 @@ class ComparisonRow:
     volume_mm3: float | None = None
     power_density_kw_per_l: float | None = None
     backdrive_note: str | None = None
+    formal_efficiency: float | None = None
+    backdrive_formal_efficiency: float | None = None
 
     def to_dict(self) -> dict:
         """Every field; ``max_virtual_power_ratio`` is the largest power a mesh passes in
@@ -91,8 +97,8 @@ class ComparisonTable:
 
     def text_report(self) -> str:
         """Aligned text table, one row per train; columns with no data are left out.
-        A self-locking direction shows "locks" instead of its formal (<= 0) efficiency,
-        which stays in :meth:`to_dict` (docs/locking.md)."""
+        A self-locking direction shows "locks" instead of its efficiency; the formal
+        (<= 0) efficiency stays in :meth:`to_dict` (docs/locking.md)."""
         columns = [c for c in COLUMNS if any(getattr(r, c[0]) is not None for r in self.rows)]
         header, body = [], [[] for _ in self.rows]
         for key, title, kind in columns:
@@ -153,29 +159,37 @@ def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None
 def compare_row(model: Model) -> ComparisonRow:
     """The figures of merit of one model (see :class:`ComparisonRow`)."""
     forward = solve(model)
-    back_eff, back_lock, note = _backdrive(model)
+    back, note = _backdrive(model, forward.input_power)
     largest = max((e.carrier_frame_power for e in forward.meshes), default=0.0)
     volume, density = _volume(model, forward.output_power)
     return ComparisonRow(
         name=model.name, source=model.source, dof=forward.dof, ratio=forward.ratio,
         efficiency=forward.efficiency, self_locking=forward.self_locking,
-        backdrive_efficiency=back_eff, backdrive_self_locking=back_lock,
+        backdrive_efficiency=back.efficiency if back is not None else None,
+        backdrive_self_locking=back.self_locking if back is not None else None,
         circulating_power=forward.circulating_power,
         max_virtual_power_ratio=largest / forward.input_power if forward.input_power else 0.0,
         meshes=len(forward.meshes), input_power=forward.input_power,
         total_loss=forward.total_loss, volume_mm3=volume, power_density_kw_per_l=density,
-        backdrive_note=note)
+        backdrive_note=note, formal_efficiency=_finite(forward.formal_efficiency),
+        backdrive_formal_efficiency=_finite(back.formal_efficiency) if back is not None
+        else None)
 
 
-def _backdrive(model: Model) -> tuple[float | None, bool | None, str | None]:
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
+def _backdrive(model: Model, power: float) -> tuple[Any, str | None]:
+    """The back-driven solve at the forward input power (None with a note when not
+    defined or not solvable)."""
     if len(model.inputs) != 1 or len(model.outputs) != 1:
-        return None, None, "back-driving needs one input and one output"
+        return None, "back-driving needs one input and one output"
     try:
-        result = solve(backdriven(model))
+        result = solve(backdriven(model, power))
     except PowerGraphError as exc:
-        return None, None, str(exc)
-    note = f"locks: {result.lock.reason}" if result.lock is not None else None
-    return result.efficiency, result.self_locking, note
+        return None, str(exc)
+    return result, f"locks: {result.lock.reason}" if result.lock is not None else None
 
 
 def _volume(model: Model, output_power: float) -> tuple[float | None, float | None]:

@@ -19,7 +19,7 @@ not converge there either is reported, not dropped.
 Examples
 --------
 >>> import powergraph as pg
->>> m = pg.load_model("models/rv40e_friction.yaml")
+>>> m = pg.load_model("models/rv40e.yaml")
 >>> g = solve_grid(m, np.array([1815.0, 1815.0]), np.array([100.0, 412.0]))
 >>> g.efficiency.round(4).tolist(), g.single_solves, g.unconverged.tolist()
 ([0.8264, 0.8702], 0, [False, False])
@@ -45,6 +45,7 @@ from powergraph.statics.directions import (driver_codes, factors_for, own_scales
 from powergraph.statics.equilibrium import loads_of
 from powergraph.statics.friction import MAX_PASSES, friction_meshes
 from powergraph.units_si import RAD_S_PER_RPM
+from powergraph.statics.ports import flow_efficiency_of_roles
 
 #: The single solve's convergence test (the default of ``solve_with_friction``): no
 #: efficiency changes by more than this, no bearing torque by more than this times the
@@ -100,7 +101,7 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
         except SolveError:
             unconverged[p] = True
             continue
-        efficiency[p], power[p] = result.efficiency, result.input_power
+        efficiency[p], power[p] = _eta(result), result.input_power
     return GridSolution(efficiency=efficiency, input_power=power, unconverged=unconverged,
                         single_solves=int(np.count_nonzero(pending)))
 
@@ -306,7 +307,7 @@ class _Grid:
         found = self._pattern(matrix, rhs, x, factors, mask)
         agrees = np.all((found == 0) | (found == self.codes), axis=1)
         agrees &= np.linalg.cond(matrix) < MAX_CONDITION
-        return np.array([p_out / p_in, p_in, agrees.astype(float)])
+        return np.array([flow_efficiency_of_roles(p_in, p_out), p_in, agrees.astype(float)])
 
     def _pattern(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
                  factors: np.ndarray, mask: np.ndarray) -> np.ndarray:
@@ -347,3 +348,8 @@ def _bearing_specs(model: Model, row: dict, elements: tuple) -> list[dict]:
                           "count": component.count, "friction": None, "drag": component.drag,
                           "meshes": []})
     return specs
+
+
+def _eta(result) -> float:
+    """The solve's efficiency (from the actual flows), NaN when no power passes."""
+    return float("nan") if result.efficiency is None else result.efficiency

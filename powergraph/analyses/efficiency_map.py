@@ -15,7 +15,7 @@ and points the batch cannot take are solved one by one.
 Examples
 --------
 >>> import powergraph as pg
->>> m = efficiency_map(pg.load_model("models/rv40e.yaml"), [100.0, 400.0], [500.0, 1500.0])
+>>> m = efficiency_map(pg.load_model("models/rv40e_wang2021.yaml"), [100.0, 400.0], [500.0, 1500.0])
 >>> m.efficiency.shape
 (2, 2)
 """
@@ -34,6 +34,7 @@ from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
+from powergraph.statics.ports import flow_efficiency_of_roles
 from powergraph.units_si import RAD_S_PER_RPM
 
 
@@ -126,7 +127,7 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
                 power[i, j] = power[0, 0] * (speed / speeds[0]) * (torque / torques[0])
                 continue
             result = solve(_at(model, speed * RAD_S_PER_RPM, torque, sense))
-            values[i, j], power[i, j] = result.efficiency, result.input_power
+            values[i, j], power[i, j] = _eta(result), result.input_power
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
                          load_dependent=model.has_bearing_losses, input_power=power)
@@ -159,9 +160,9 @@ def _affine_row(model: Model, speed: float, torques: np.ndarray,
         share = (torques - low) / (high - low)
         p_in = ends[0].input_power + share * (ends[1].input_power - ends[0].input_power)
         p_out = ends[0].output_power + share * (ends[1].output_power - ends[0].output_power)
-        return p_out / p_in, p_in
+        return flow_efficiency_of_roles(p_in, p_out), p_in
     results = ends if len(ends) == 1 else [solve(_at(model, speed, t, sense)) for t in torques]
-    return (np.array([r.efficiency for r in results]),
+    return (np.array([_eta(r) for r in results]),
             np.array([r.input_power for r in results]))
 
 
@@ -177,3 +178,8 @@ def _grid(values: Sequence[float], what: str) -> np.ndarray:
     if what == "torque" and np.any(array <= 0):
         raise UsageError("output torques must be > 0 (the load the output drives)")
     return array
+
+
+def _eta(result) -> float:
+    """The solve's efficiency (from the actual flows), NaN when no power passes."""
+    return float("nan") if result.efficiency is None else result.efficiency

@@ -1,5 +1,6 @@
 """``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
-[--strict]`` (``--strict``: a model with warnings is refused before solving, exit 2)."""
+[--backdrive] [--strict]`` (``--strict``: a model with warnings is refused before solving,
+exit 2)."""
 from __future__ import annotations
 
 import argparse
@@ -23,13 +24,22 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="override every mesh's basic efficiency")
     add_strict(parser)
+    _result_options(parser)
     parser.set_defaults(handler=run)
+
+
+def _result_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--backdrive", action="store_true",
+                        help="report the train driven from its output: the output becomes "
+                             "the input and is fed the power the forward solve takes in")
 
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
     if args.strict and model.warnings:
         return refuse_caveats(model.warnings)
+    if args.backdrive:
+        model = _backdriven(model)
     if args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 
@@ -50,6 +60,18 @@ def run(args: argparse.Namespace) -> int:
             print()
             print(fluctuation.text_report())
     return 0
+
+
+def _backdriven(model):
+    """The model driven from its output at the forward input power (one input, one output)."""
+    from powergraph.errors import UsageError
+    from powergraph.kinematics.variants import backdriven
+    from powergraph.statics import solve
+
+    if len(model.inputs) != 1 or len(model.outputs) != 1:
+        raise UsageError("--backdrive needs a train with one input and one output port "
+                         f"(this one has {len(model.inputs)} and {len(model.outputs)})")
+    return backdriven(model, solve(model).input_power)
 
 
 def _cycloid_fluctuation(model):

@@ -35,7 +35,7 @@ class Kinematics:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> kin = solve_speeds(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+    >>> kin = solve_speeds(load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
     >>> round(kin.speed("4"), 5)                                # doctest: +SKIP
     1.29818
     """

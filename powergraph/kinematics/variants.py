@@ -8,17 +8,21 @@ from powergraph.kinematics.speeds import solve_speeds
 from powergraph.model.spec import Model
 
 
-def backdriven(model: Model) -> Model:
+def backdriven(model: Model, power: float | None = None) -> Model:
     """The same train driven from its output: the output port becomes the input.
 
     The motion keeps its direction (the new input turns at the speed it had), and the new
     input feeds the power (or the torque) the old input fed, so forward and back-driven
     efficiencies compare at the same power. Only one-input, one-output trains.
 
+    When the input is given only a speed, the power fed in is ``power`` — pass the forward
+    solve's input power, so that load-dependent losses (friction laws, drag) are met at
+    the same power — or 1 W when ``power`` is None (or not positive).
+
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> back = backdriven(load_model("models/rv40e.yaml"))      # doctest: +SKIP
+    >>> back = backdriven(load_model("models/rv40e_wang2021.yaml"))      # doctest: +SKIP
     >>> [(p.component, p.role) for p in back.ports]              # doctest: +SKIP
     [('1', 'output'), ('6', 'input')]
     """
@@ -31,7 +35,7 @@ def backdriven(model: Model) -> Model:
     elif source.torque is not None:
         power = source.torque * kin.speed(source.component)
     else:
-        power = 1.0
+        power = float(power) if power is not None and power > 0 else 1.0
     load = {"power": power, "torque": None}
     ports = []
     for port in model.ports:

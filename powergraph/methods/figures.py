@@ -20,7 +20,7 @@ virtual-power η does fall. We plot what the equations give (tests/data/publishe
 Examples
 --------
 >>> from powergraph.model import load_model
->>> rv40e = load_model("models/rv40e.yaml")                      # doctest: +SKIP
+>>> rv40e = load_model("models/rv40e_wang2021.yaml")                      # doctest: +SKIP
 >>> fig = cycloid_ratio_curves(rv40e, z5_values=[30, 40, 50])    # doctest: +SKIP
 >>> [round(float(y), 5) for y in fig.curve("wang2021").y]        # doctest: +SKIP
 [0.88153, 0.88206, 0.88238]
@@ -119,7 +119,7 @@ def with_teeth(model: Model, teeth: Mapping[str, int]) -> Model:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> rv40e = load_model("models/rv40e.yaml")                          # doctest: +SKIP
+    >>> rv40e = load_model("models/rv40e_wang2021.yaml")                          # doctest: +SKIP
     >>> with_teeth(rv40e, {"5": 50}).components["5"].teeth               # doctest: +SKIP
     50
     """
@@ -202,7 +202,7 @@ def mesh_efficiency_curves(model: Model, efficiencies: Iterable[float] | None = 
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> fig = mesh_efficiency_curves(load_model("models/rv40e.yaml"), [0.94])  # doctest: +SKIP
+    >>> fig = mesh_efficiency_curves(load_model("models/rv40e_wang2021.yaml"), [0.94])  # doctest: +SKIP
     >>> round(float(fig.curve("virtual-power").y[0]), 6)                # doctest: +SKIP
     0.287376
     """
@@ -234,7 +234,7 @@ def equivalent_efficiency_curve(model: Model,
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> fig = equivalent_efficiency_curve(load_model("models/rv40e.yaml"), [0.94])  # doctest: +SKIP
+    >>> fig = equivalent_efficiency_curve(load_model("models/rv40e_wang2021.yaml"), [0.94])  # doctest: +SKIP
     >>> round(float(fig.curves[0].y[0]), 6)                             # doctest: +SKIP
     0.998285
     """
@@ -289,7 +289,7 @@ def cycloid_ratio_curves(model: Model, z5_values: Iterable[int] | None = None,
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> fig = cycloid_ratio_curves(load_model("models/rv40e.yaml"), [40])  # doctest: +SKIP
+    >>> fig = cycloid_ratio_curves(load_model("models/rv40e_wang2021.yaml"), [40])  # doctest: +SKIP
     >>> paper = fig.curve("wang2021")                                    # doctest: +SKIP
     >>> round(float(paper.x[0]), 9), round(float(paper.y[0]), 6)        # doctest: +SKIP
     (121.0, 0.882062)
@@ -324,7 +324,7 @@ def first_stage_ratio_curves(model: Model, z2_values: Iterable[int] | None = Non
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> fig = first_stage_ratio_curves(load_model("models/rv40e.yaml"), [24, 36])  # doctest: +SKIP
+    >>> fig = first_stage_ratio_curves(load_model("models/rv40e_wang2021.yaml"), [24, 36])  # doctest: +SKIP
     >>> [round(float(y), 6) for y in fig.curve("wang2021").y]           # doctest: +SKIP
     [0.882062, 0.882062]
     """

@@ -10,7 +10,7 @@ needle-roller value).
 Examples
 --------
 >>> from powergraph.model import load_model
->>> c = compare_methods(load_model("models/rv40e.yaml"))                # doctest: +SKIP
+>>> c = compare_methods(load_model("models/rv40e_wang2021.yaml"))                # doctest: +SKIP
 >>> round(c.paper_efficiency, 6), round(c.virtual_power_efficiency, 6)  # doctest: +SKIP
 (0.882062, 0.287376)
 >>> round(c.equivalent_cycloid_efficiency, 6)                           # doctest: +SKIP
@@ -136,7 +136,7 @@ def equivalent_cycloid_efficiency(model: Model, target: float | None = None) -> 
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> rv40e = load_model("models/rv40e.yaml")                          # doctest: +SKIP
+    >>> rv40e = load_model("models/rv40e_wang2021.yaml")                          # doctest: +SKIP
     >>> round(equivalent_cycloid_efficiency(rv40e), 6)                  # doctest: +SKIP
     0.998285
     """
@@ -146,7 +146,7 @@ def equivalent_cycloid_efficiency(model: Model, target: float | None = None) -> 
     roles = find_rv_roles(model)
     if target is None:
         target = paper_equations(model, roles).efficiency
-    return efficiency_for(model, roles.cycloid_mesh, lambda r: r.efficiency, target)
+    return efficiency_for(model, roles.cycloid_mesh, lambda r: r.formal_efficiency, target)
 
 
 def compare_methods(model: Model) -> MethodComparison:
@@ -164,7 +164,7 @@ def compare_methods(model: Model) -> MethodComparison:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> c = compare_methods(load_model("models/rv40e.yaml"))   # doctest: +SKIP
+    >>> c = compare_methods(load_model("models/rv40e_wang2021.yaml"))   # doctest: +SKIP
     >>> print(c.text_report())                                  # doctest: +SKIP
                                          Wang (2021)   virtual power
     efficiency                              0.882062        0.287376

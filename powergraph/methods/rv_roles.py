@@ -18,7 +18,7 @@ method needs and what was found.
 Examples
 --------
 >>> from powergraph.model import load_model
->>> roles = find_rv_roles(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> roles = find_rv_roles(load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> roles.input_gear, roles.planet_body, roles.cycloid, roles.output_body   # doctest: +SKIP
 ('1', '2/3', '4', '6/7')
 """
@@ -171,7 +171,7 @@ def find_rv_roles(model: Model) -> RVRoles:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> roles = find_rv_roles(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+    >>> roles = find_rv_roles(load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
     >>> roles.first_mesh, roles.cycloid_mesh, roles.pin_gear       # doctest: +SKIP
     (0, 1, '5')
     """

@@ -7,8 +7,8 @@ realisation of the paper's losses (:mod:`powergraph.methods.wang2021`).
 Examples
 --------
 >>> from powergraph.model import load_model
->>> model = load_model("models/rv40e.yaml")                           # doctest: +SKIP
->>> x = efficiency_for(model, 1, lambda r: r.efficiency, 0.882061)    # doctest: +SKIP
+>>> model = load_model("models/rv40e_wang2021.yaml")                           # doctest: +SKIP
+>>> x = efficiency_for(model, 1, lambda r: r.formal_efficiency, 0.882061)  # doctest: +SKIP
 >>> round(x, 6)                                                       # doctest: +SKIP
 0.998285
 """
@@ -99,7 +99,7 @@ def lossless_cycloid_power(model: Model, cycloid_mesh: int) -> float:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> rv40e = load_model("models/rv40e.yaml")                          # doctest: +SKIP
+    >>> rv40e = load_model("models/rv40e_wang2021.yaml")                          # doctest: +SKIP
     >>> round(lossless_cycloid_power(rv40e, 1) / 2270, 4)               # doctest: +SKIP
     38.6777
     """

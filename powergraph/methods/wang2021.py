@@ -29,12 +29,12 @@ What the result reports besides the paper's numbers (the paper does not give the
   loses exactly L1 in the first-stage mesh and L2 in the cycloid–pin mesh (every body in
   equilibrium, every node balanced; ``realised_efficiencies``). The paper's lossless split
   (its Fig. 5, with ``V``) is ``split_flows``;
-- ``self_locking``: by the virtual-power method (efficiency <= 0, docs/format.md).
+- ``self_locking``: by the virtual-power method (formal efficiency <= 0, docs/format.md).
 
 Examples
 --------
 >>> from powergraph.model import load_model
->>> result = solve_wang2021(load_model("models/rv40e.yaml"))           # doctest: +SKIP
+>>> result = solve_wang2021(load_model("models/rv40e_wang2021.yaml"))           # doctest: +SKIP
 >>> round(result.split_power, 4), round(result.paper_virtual_power, 5)       # doctest: +SKIP
 (2211.7949, 58.20513)
 >>> [round(x, 5) for x in result.losses], round(result.efficiency, 6)  # doctest: +SKIP
@@ -156,9 +156,10 @@ class Wang2021Result:
 
     @property
     def self_locking(self) -> bool:
-        """Efficiency <= 0 by the virtual-power method (the paper's η if that failed)."""
-        eta = self.virtual_power_efficiency
-        return not (eta if eta is not None else self.efficiency) > 0.0
+        """Self-locking by the virtual-power method (formal efficiency <= 0), or the paper's
+        η <= 0 if that method failed."""
+        vp = self.virtual_power_result
+        return vp.self_locking if vp is not None else not self.efficiency > 0.0
 
     # --- speeds, torques, meshes, flows --------------------------------------------
     @property
@@ -287,7 +288,7 @@ def paper_equations(model: Model, roles: RVRoles | None = None,
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> eq = paper_equations(load_model("models/rv40e.yaml"))   # doctest: +SKIP
+    >>> eq = paper_equations(load_model("models/rv40e_wang2021.yaml"))   # doctest: +SKIP
     >>> round(eq.beta, 9), round(eq.alpha, 9)                   # doctest: +SKIP
     (39.0, 40.0)
     """
@@ -361,7 +362,7 @@ def solve_wang2021(model: Model, realise_flows: bool = True) -> Wang2021Result:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> r = solve_wang2021(load_model("models/rv40e.yaml"))       # doctest: +SKIP
+    >>> r = solve_wang2021(load_model("models/rv40e_wang2021.yaml"))       # doctest: +SKIP
     >>> eta, rigorous = r.efficiency, r.virtual_power_efficiency  # doctest: +SKIP
     >>> f"{eta:.1%} by the paper, {rigorous:.2%} rigorous"         # doctest: +SKIP
     '88.2% by the paper, 28.74% rigorous'

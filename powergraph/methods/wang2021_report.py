@@ -7,7 +7,7 @@ Examples
 --------
 >>> from powergraph.model import load_model
 >>> from powergraph.methods.wang2021 import solve_wang2021
->>> result = solve_wang2021(load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> result = solve_wang2021(load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> data = result_to_dict(result)                                # doctest: +SKIP
 >>> data["method"], [round(x, 2) for x in data["losses"]]        # doctest: +SKIP
 ('wang2021', [136.2, 131.52])
@@ -79,6 +79,7 @@ def result_to_dict(result: "Wang2021Result") -> dict[str, Any]:
         "total_loss": result.total_loss, "speeds": result.speeds, "torques": result.torques,
         "meshes": _meshes(result), "flows": [f.to_dict() for f in result.flows()],
         "circulating_power": result.circulating_power, "self_locking": result.self_locking,
+        "warnings": [str(caveat) for caveat in model.warnings],
         "split_power": result.split_power, "virtual_power": result.paper_virtual_power,
         "losses": list(result.losses), "beta": result.beta, "alpha": result.alpha,
         "roles": result.roles.to_dict(model),

@@ -31,7 +31,7 @@ def load_model(path: str | Path) -> Model:
 
     Examples
     --------
-    >>> model = load_model("models/rv40e.yaml")      # doctest: +SKIP
+    >>> model = load_model("models/rv40e_wang2021.yaml")      # doctest: +SKIP
     >>> model.name                                   # doctest: +SKIP
     'RV-40E'
     """

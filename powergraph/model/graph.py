@@ -3,7 +3,7 @@
 Examples
 --------
 >>> from powergraph.model import load_model
->>> model = load_model("models/rv40e.yaml")                   # doctest: +SKIP
+>>> model = load_model("models/rv40e_wang2021.yaml")                   # doctest: +SKIP
 >>> [b.id for b in model.bodies]                              # doctest: +SKIP
 ['0/5', '1', '2/3', '4', '6/7']
 """

@@ -57,7 +57,7 @@ def parse_path(model: Model, path: str) -> Parameter:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> rv = load_model("models/rv40e.yaml")                         # doctest: +SKIP
+    >>> rv = load_model("models/rv40e_wang2021.yaml")                         # doctest: +SKIP
     >>> parse_path(rv, "links.1.efficiency")                         # doctest: +SKIP
     Parameter(path='links.1.efficiency', kind='efficiency', targets=(1,))
     """

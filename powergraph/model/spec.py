@@ -156,7 +156,7 @@ class Model:
         Examples
         --------
         >>> from powergraph.model import load_model
-        >>> m = load_model("models/rv40e.yaml").with_mesh_efficiency(0.99)  # doctest: +SKIP
+        >>> m = load_model("models/rv40e_wang2021.yaml").with_mesh_efficiency(0.99)  # doctest: +SKIP
         """
         from powergraph.model.validate import check_efficiency
 

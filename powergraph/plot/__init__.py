@@ -26,7 +26,7 @@ own layer and importing them never imports matplotlib.
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))     # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))     # doctest: +SKIP
 >>> ax = result.plot(frame="3")       # imports powergraph.plot.power_flow  # doctest: +SKIP
 >>> from powergraph.plot.layout.view import format_share   # no matplotlib needed
 >>> format_share(2063.26, 2270.0)

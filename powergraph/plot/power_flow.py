@@ -15,7 +15,7 @@ from :func:`powergraph.plot.layout.layout.layout_flow`; this module only draws t
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))       # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))       # doctest: +SKIP
 >>> ax = plot_power_flow(result, frame="3")                      # doctest: +SKIP
 >>> arrow, label = ax.powergraph_artists[("2/3", "mesh 4-5")]     # doctest: +SKIP
 >>> label.get_text()                                             # doctest: +SKIP

@@ -7,7 +7,7 @@ Examples
 --------
 >>> from powergraph.model import load_model
 >>> from powergraph.methods.figures import mesh_efficiency_curves
->>> ax = plot_figure(mesh_efficiency_curves(load_model("models/rv40e.yaml")))  # doctest: +SKIP
+>>> ax = plot_figure(mesh_efficiency_curves(load_model("models/rv40e_wang2021.yaml")))  # doctest: +SKIP
 """
 from __future__ import annotations
 

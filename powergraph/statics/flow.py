@@ -10,7 +10,7 @@ every frame.
 Examples
 --------
 >>> import powergraph as pg
->>> r = pg.solve(pg.load_model("models/rv40e.yaml"))                # doctest: +SKIP
+>>> r = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))                # doctest: +SKIP
 >>> [f for f in r.flows() if f.source == "motor"]                   # doctest: +SKIP
 [Flow(source='motor', target='1', power=2270.0)]
 """

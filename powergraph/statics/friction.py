@@ -126,7 +126,7 @@ def loss_block_places(model: Model) -> list[str]:
     refuse such a model rather than let these losses vanish.
 
     >>> from powergraph.model import load_model
-    >>> loss_block_places(load_model("models/rv40e_friction.yaml"))[:2]
+    >>> loss_block_places(load_model("models/rv40e.yaml"))[:2]
     ['links[0].friction', 'links[1].pins']
     """
     places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"

@@ -1,8 +1,11 @@
 """The JSON object and the readable text report of ``powergraph solve`` (docs/format.md)."""
 from __future__ import annotations
 
+import math
+import textwrap
 from typing import Any
 
+from powergraph.statics.columns import column, power_unit, ratio_text, table
 from powergraph.statics.result import PowerFlowResult
 from powergraph.units_si import RPM_PER_RAD_S
 
@@ -12,7 +15,9 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
     """The keys of ``solve --json`` (docs/format.md), plus ``passes``,
     ``load_sharing_assumed``, ``lock`` (null, or why the train cannot move as asked:
     docs/locking.md) and ``directions`` (null, or how the search found the directions
-    when the fixed-point iteration cycled).
+    when the fixed-point iteration cycled), ``ports`` (each port's speed, torque and power,
+    positive into the train), ``formal_efficiency``, ``efficiency_note``,
+    ``loss_breakdown`` (where the power goes) and ``warnings``.
 
     Component ids in lists (``between``, ``carrier``, ``driver``) are written as in the
     model file; dictionary keys are their string forms.
@@ -39,6 +44,12 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "flows": [f.to_dict() for f in result.flows()],
         "circulating_power": result.circulating_power,
         "self_locking": result.self_locking,
+        "formal_efficiency": _finite(result.formal_efficiency),
+        "efficiency_note": result.efficiency_note,
+        "ports": [p.to_dict(raw) for p in result.ports],
+        "loss_breakdown": [{"source": source, "power": loss}
+                           for source, loss in loss_sources(result)],
+        "warnings": [str(caveat) for caveat in result.warnings],
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,
         **_friction_dict(result),
@@ -59,8 +70,54 @@ def _friction_dict(result: PowerFlowResult) -> dict[str, Any]:
     return out
 
 
-def _fmt_power(watts: float) -> str:
-    return f"{watts / 1000:,.4f} kW" if abs(watts) >= 1000 else f"{watts:,.4f} W"
+def _finite(value: float) -> float | None:
+    return value if math.isfinite(value) else None
+
+
+def loss_sources(result: PowerFlowResult) -> list[tuple[str, float]]:
+    """Where the power goes: each mesh (a cycloid mesh split into its pins, output pins and
+    crank bearings), each bearing and drag, as ``(label, W)``; they sum to the total loss.
+
+    A cycloid mesh's basic efficiency is the product of its parts' (docs/losses.md); its
+    loss is shared among them in proportion to ``-ln η`` of each, which adds up exactly.
+    """
+    model = result.model
+    raw = model.raw_id
+    out = []
+    for e in result.elements:
+        if e.kind != "mesh" and e.loss == 0.0:
+            continue
+        link = model.links[e.link]
+        label = (f"links[{e.link}] {e.kind} {raw(e.a)}-{raw(e.b)}"
+                 f" ({_names(model, (e.a, e.b), getattr(link, 'name', None))})")
+        block = (link.blocks or {}).get("friction")
+        out += _split(label, e.loss, getattr(block, "loss", None))
+    for b in result.bearings:
+        prefix = f"links[{b.link}] " if b.link is not None else ""
+        out.append((f"{prefix}{b.node} ({_names(model, b.between, None)})"
+                    + (" drag" if b.kind == "drag" and "drag" not in b.node else ""), b.loss))
+    return out
+
+
+def _names(model, ids, name: str | None) -> str:
+    """``center gear / planet gear`` (or the link's own name)."""
+    if name:
+        return name
+    return " / ".join(model.components[c].name or str(model.raw_id(c)) for c in ids)
+
+
+def _split(label: str, loss: float, stage) -> list[tuple[str, float]]:
+    parts = []
+    if hasattr(stage, "pin_efficiency"):     # a cycloid stage (CycloidLoss)
+        parts = [(name, eta) for name, eta in (("pins", stage.pin_efficiency),
+                                               ("output pins", stage.output_efficiency),
+                                               ("crank bearings", stage.bearing_efficiency))
+                 if eta < 1.0]
+    weights = [-math.log(eta) for _, eta in parts]
+    if len(parts) < 2 or not all(w > 0 for w in weights):
+        return [(label, loss)]
+    total = sum(weights)
+    return [(f"{label}: {name}", loss * w / total) for (name, _), w in zip(parts, weights)]
 
 
 def _verdict_lines(result: PowerFlowResult) -> list[str]:
@@ -85,69 +142,190 @@ def _verdict_lines(result: PowerFlowResult) -> list[str]:
     return lines
 
 
+def summary_line(result: PowerFlowResult) -> str:
+    """``RV-40E, 1 DOF, ratio 121 : 1, efficiency 87.02 %`` (``repr`` of a result)."""
+    parts = [result.name, f"{result.dof} DOF"]
+    if result.ratio is not None:
+        parts.append(f"ratio {ratio_text(result.ratio)}")
+    parts.append(f"efficiency {_percent(result.efficiency)}")
+    return ", ".join(parts)
+
+
+def html_summary(result: PowerFlowResult) -> str:
+    """A small HTML table (notebooks): summary rows, then the ports."""
+    from html import escape
+
+    rows = [("train", result.name), ("DOF", str(result.dof))]
+    if result.ratio is not None:
+        rows.append(("ratio", ratio_text(result.ratio)))
+    rows += [("efficiency", _percent(result.efficiency)),
+             ("losses", _power(result.total_loss))]
+    body = "".join(f"<tr><th style='text-align:left'>{escape(k)}</th><td>{escape(v)}</td>"
+                   f"<td colspan='4'></td></tr>" for k, v in rows)
+    head = "".join(f"<th>{h}</th>" for h in ("port", "role", "rpm", "torque N·m", "power W",
+                                              "direction"))
+    ports = "".join(
+        "<tr>" + "".join(f"<td>{escape(c)}</td>" for c in (
+            _port_label(result, p), p.role, f"{p.speed * RPM_PER_RAD_S:.6g}", f"{p.torque + 0.0:.6g}",
+            f"{p.power + 0.0:.6g}", p.direction)) + "</tr>" for p in result.ports)
+    warnings = "".join(f"<p>warning: {escape(str(w))}</p>" for w in result.warnings)
+    return (f"<table>{body}<tr>{head}</tr>{ports}</table>{warnings}")
+
+
+def _percent(eta: float | None) -> str:
+    return "undefined (no power passes)" if eta is None else f"{eta * 100:.2f} %"
+
+
+def _power(watts: float) -> str:
+    unit, scale = power_unit([watts])
+    return f"{column([watts], scale)[0]} {unit}"
+
+
+def _port_label(result: PowerFlowResult, port) -> str:
+    label = result.model.components[port.component].label
+    return f"{port.name} ({label})" if port.name else label
+
+
 def text_report(result: PowerFlowResult) -> str:
-    """A readable report: speeds (rpm), external torques, per-mesh table, efficiency."""
+    """A readable report: summary, warnings, ports, speeds, torques, meshes, losses."""
     model = result.model
     lines = [f"{model.name} — virtual-power method ({result.dof} DOF)"]
     if model.description:
-        lines.append(f"  {model.description.strip()}")
-    lines.append("")
-    if result.ratio is not None:
-        lines.append(f"ratio (input/output speed)  {result.ratio:.6g}")
-    lines += [f"input power                 {_fmt_power(result.input_power)}",
-              f"output power                {_fmt_power(result.output_power)}",
-              f"losses                      {_fmt_power(result.total_loss)}",
-              f"efficiency                  {result.efficiency * 100:.4f} %"]
+        lines.append(textwrap.fill(" ".join(model.description.split()), width=88,
+                                   initial_indent="  ", subsequent_indent="  "))
+    lines += [""] + _summary_lines(result)
+    lines += [f"warning: {caveat}" for caveat in result.warnings]
     lines += _verdict_lines(result)
-    if result.circulating_power > 0:
-        lines.append(f"circulating power           {_fmt_power(result.circulating_power)}")
-    lines += ["", "speeds", f"  {'component':<24}{'rad/s':>14}{'rpm':>14}"]
-    for cid, w in result.speeds.items():
-        lines.append(f"  {model.components[cid].label:<24}{w:>14.6g}{w * RPM_PER_RAD_S:>14.6g}")
-    lines += ["", "external torques (N·m, positive in the sense of positive speed)"]
-    for cid, t in result.torques.items():
-        lines.append(f"  {model.components[cid].label:<24}{t:>14.6g}")
-    lines += ["", "meshes (powers in each mesh's carrier frame)",
-              f"  {'link':<6}{'between':<10}{'carrier':<9}{'eta':>7}{'driver':>8}"
-              f"{'virtual power':>18}{'loss':>14}"]
-    raw = model.raw_id
-    for e in result.meshes:
-        driver = str(raw(e.driver)) if e.driver is not None else "-"
-        lines.append(f"  {e.link:<6}{f'{raw(e.a)}-{raw(e.b)}':<10}{str(raw(e.carrier)):<9}"
-                     f"{e.efficiency:>7.4g}{driver:>8}{_fmt_power(e.carrier_frame_power):>18}"
-                     f"{_fmt_power(e.loss):>14}")
+    lines += ["", "ports (torque on the train, power positive into the train)"]
+    lines += _ports_table(result)
+    lines += ["", "speeds"] + _speeds_table(result)
+    lines += ["", "meshes (powers in each mesh's carrier frame)"] + _mesh_table(result)
     lines += _friction_lines(result)
     lines += _bearing_lines(result)
+    lines += ["", "where the power goes"] + _losses_table(result)
     if result.load_sharing_assumed:
         lines += ["", "note: load sharing between parallel paths is statically indeterminate; "
                   "the minimum-norm (equal) sharing was assumed"]
     return "\n".join(lines)
 
 
+def _summary_lines(result: PowerFlowResult) -> list[str]:
+    entering = sum(p.power for p in result.ports if p.power > 0)
+    leaving = -sum(p.power for p in result.ports if p.power < 0)
+    unit, scale = power_unit([entering, leaving, result.total_loss])
+    powers = column([entering, leaving, result.total_loss], scale)
+    rows = []
+    if result.ratio is not None:
+        rows.append(["ratio (input : output speed)", ratio_text(result.ratio)])
+    rows += [["power in (at the ports)", f"{powers[0]} {unit}"],
+             ["power out (at the ports)", f"{powers[1]} {unit}"],
+             ["losses", f"{powers[2]} {unit}"],
+             ["efficiency (out / in)", _percent(result.efficiency)
+              if result.efficiency is not None else f"undefined: {result.efficiency_note}"]]
+    formal = result.formal_efficiency
+    if result.efficiency is not None and result.lock is None and math.isfinite(formal) \
+            and abs(formal - result.efficiency) > 1e-9:
+        rows.append(["formal efficiency", f"{formal * 100:.2f} % (declared output / "
+                                          "declared input)"])
+    if result.circulating_power > 0:
+        rows.append(["circulating power", _power(result.circulating_power)])
+    return table(rows, set(), indent="")
+
+
+def _ports_table(result: PowerFlowResult) -> list[str]:
+    ports = result.ports
+    unit, scale = power_unit([p.power for p in ports])
+    rpm = column([p.speed * RPM_PER_RAD_S for p in ports])
+    torque = column([p.torque for p in ports])
+    power = column([p.power for p in ports], scale)
+    rows = [["port", "name", "component", "role", "rpm", "torque N·m", f"power {unit}",
+             "direction"]]
+    for k, p in enumerate(ports):
+        rows.append([p.path, p.name or "", result.model.components[p.component].label,
+                     p.role, rpm[k], torque[k], power[k],
+                     {"in": "enters", "out": "leaves", "none": "none"}[p.direction]])
+    return table(rows, {4, 5, 6})
+
+
+def _speeds_table(result: PowerFlowResult) -> list[str]:
+    speeds = result.speeds
+    ids = list(speeds)
+    rad = column([speeds[c] for c in ids])
+    rpm = column([speeds[c] * RPM_PER_RAD_S for c in ids])
+    torques = result.torques
+    torque = column([torques.get(c, 0.0) for c in ids])
+    rows = [["component", "rad/s", "rpm", "external torque N·m"]]
+    for k, c in enumerate(ids):
+        rows.append([result.model.components[c].label, rad[k], rpm[k],
+                     torque[k] if c in torques else ""])
+    return table(rows, {1, 2, 3})
+
+
+def _mesh_table(result: PowerFlowResult) -> list[str]:
+    meshes = result.meshes
+    if not meshes:
+        return ["  (none)"]
+    raw = result.model.raw_id
+    unit, scale = power_unit([e.carrier_frame_power for e in meshes])
+    virtual = column([e.carrier_frame_power for e in meshes], scale)
+    loss_unit, loss_scale = power_unit([e.loss for e in meshes])
+    loss = column([e.loss for e in meshes], loss_scale)
+    rows = [["link", "between", "carrier", "eta", "driver", f"virtual power {unit}",
+             f"loss {loss_unit}"]]
+    for k, e in enumerate(meshes):
+        name = getattr(result.model.links[e.link], "name", None)
+        rows.append([f"{e.link}" + (f" ({name})" if name else ""), f"{raw(e.a)}-{raw(e.b)}",
+                     str(raw(e.carrier)), f"{e.efficiency:.6g}",
+                     str(raw(e.driver)) if e.driver is not None else "-", virtual[k], loss[k]])
+    return table(rows, {3, 4, 5, 6})
+
+
+def _losses_table(result: PowerFlowResult) -> list[str]:
+    sources = loss_sources(result)
+    if not sources:
+        return ["  (no losses)"]
+    entering = sum(p.power for p in result.ports if p.power > 0)
+    values = [loss for _, loss in sources] + [result.total_loss]
+    unit, scale = power_unit(values)
+    shown = column(values, scale)
+    share = column([100 * v / entering if entering else float("nan") for v in values],
+                   significant=3)
+    rows = [["source", f"loss {unit}", "% of power in"]]
+    rows += [[label, shown[k], share[k]] for k, (label, _) in enumerate(sources)]
+    rows.append(["total", shown[-1], share[-1]])
+    return table(rows, {1, 2})
+
+
 def _friction_lines(result: PowerFlowResult) -> list[str]:
     if not result.friction:
         return []
     passes = (f", {result.friction_passes} passes" if result.friction_passes > 1 else "")
-    lines = ["", f"mesh friction (per mesh instance, carrier frame{passes})",
-             f"  {'link':<6}{'model':<10}{'F_t N':>12}{'v_t m/s':>10}{'mu':>9}{'H_V':>9}"
-             f"{'eta':>10}"]
+    rows = [["link", "model", "F_t N", "v_t m/s", "mu", "H_V", "eta"]]
     for s in result.friction:
-        lines.append(f"  {s.link:<6}{s.model:<10}{s.tangential_force:>12.5g}"
-                     f"{s.pitch_speed:>10.4g}{s.mu:>9.4g}{s.loss_factor:>9.4g}"
-                     f"{s.efficiency:>10.6f}")
-    return lines
+        rows.append([str(s.link), s.model, f"{s.tangential_force:.5g}",
+                     f"{s.pitch_speed:.4g}", f"{s.mu:.4g}", f"{s.loss_factor:.4g}",
+                     f"{s.efficiency:.6f}"])
+    return (["", f"mesh friction (per mesh instance, carrier frame{passes})"]
+            + table(rows, {2, 3, 4, 5, 6}))
 
 
 def _bearing_lines(result: PowerFlowResult) -> list[str]:
     if not result.bearings:
         return []
     raw = result.model.raw_id
-    lines = ["", "bearings and drag (F, friction and drag torques per instance; M the total)",
-             f"  {'node':<16}{'between':<10}{'n rel rpm':>11}{'F N':>11}{'M_mu N·m':>11}"
-             f"{'M0 N·m':>10}{'M N·m':>10}{'loss':>14}"]
-    for b in result.bearings:
-        between = f"{raw(b.between[0])}-{raw(b.between[1])}"
-        lines.append(f"  {b.node:<16}{between:<10}{b.relative_speed * RPM_PER_RAD_S:>11.5g}"
-                     f"{b.radial_load:>11.5g}{b.friction_torque:>11.4g}{b.drag_torque:>10.4g}"
-                     f"{b.torque:>10.4g}{_fmt_power(b.loss):>14}")
-    return lines
+    bearings = result.bearings
+    unit, scale = power_unit([b.loss for b in bearings])
+    loss = column([b.loss for b in bearings], scale)
+    rows = [["node", "between", "n rel rpm", "F N", "M_mu N·m", "M0 N·m", "M N·m",
+             f"loss {unit}"]]
+    for k, b in enumerate(bearings):
+        rows.append([b.node, f"{raw(b.between[0])}-{raw(b.between[1])}",
+                     _g(b.relative_speed * RPM_PER_RAD_S, 5), _g(b.radial_load, 5),
+                     _g(b.friction_torque, 4), _g(b.drag_torque, 4), _g(b.torque, 4), loss[k]])
+    return (["", "bearings and drag (F, friction and drag torques per instance; M the total)"]
+            + table(rows, {2, 3, 4, 5, 6, 7}))
+
+
+def _g(value: float, digits: int) -> str:
+    """``value`` to ``digits`` significant digits, never ``-0``."""
+    return f"{value + 0.0:.{digits}g}".replace("-0e", "0e") if value != 0 else "0"

@@ -5,10 +5,13 @@ The JSON object of ``powergraph solve --json`` is described in docs/format.md.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Mapping
 
+from powergraph.errors import Caveat
 from powergraph.kinematics import Kinematics
 from powergraph.model.spec import Model
+from powergraph.statics.ports import PortFlow, flow_efficiency, port_flows, result_caveats
 
 
 @dataclass(frozen=True)
@@ -88,7 +91,7 @@ class PowerFlowResult:
     Examples
     --------
     >>> import powergraph as pg
-    >>> result = pg.solve(pg.load_model("models/rv40e.yaml"))   # doctest: +SKIP
+    >>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))   # doctest: +SKIP
     >>> round(result.efficiency, 6)                              # doctest: +SKIP
     0.287376
     """
@@ -128,17 +131,51 @@ class PowerFlowResult:
         return (self.lock.asked if self.lock is not None else self.kinematics).ratio
 
     @property
-    def efficiency(self) -> float:
-        """Output power / input power; 0 for a locked train (it stays at rest)."""
+    def efficiency(self) -> float | None:
+        """Power leaving the train at its ports over power entering at its ports, from the
+        actual flows whatever the declared roles (:attr:`ports`): never above 1; 0 when
+        every port takes power in (self-locking) or the train locks (it stays at rest);
+        None when no power passes (:attr:`efficiency_note` says why)."""
+        if self.lock is not None:
+            return 0.0
+        return flow_efficiency(p.power for p in self.ports)
+
+    @property
+    def formal_efficiency(self) -> float:
+        """Declared output power / declared input power, the papers' efficiency: negative
+        when the train self-locks, above 1 when it runs back-driven; 0 for a locked train,
+        NaN when no power enters at the declared input."""
         if self.lock is not None:
             return 0.0
         return self.output_power / self.input_power if self.input_power else float("nan")
 
     @property
+    def efficiency_note(self) -> str | None:
+        """Why :attr:`efficiency` is None (no power passes), else None."""
+        if self.lock is None and all(p.direction == "none" for p in self.ports):
+            return "no power passes through the train: the efficiency is undefined"
+        return None
+
+    @property
     def self_locking(self) -> bool:
-        """True when the input cannot drive the output in the asked direction: the train
-        locks, or its formal efficiency is <= 0 (the output must be driven too)."""
-        return not self.efficiency > 0.0
+        """True when the declared input cannot drive the declared output in the asked
+        direction: the train locks, or power passes and its formal efficiency is <= 0
+        (the output must be driven too). False when no power passes at all."""
+        if self.lock is not None:
+            return True
+        return self.efficiency_note is None and not self.formal_efficiency > 0.0
+
+    @cached_property
+    def ports(self) -> tuple[PortFlow, ...]:
+        """Every port with its speed, the torque on the train and the power (positive
+        into the train), in the model's order."""
+        return port_flows(self)
+
+    @cached_property
+    def warnings(self) -> tuple[Caveat, ...]:
+        """The model's caveats, then the result's own (ports whose power runs against
+        their declared role, an output torque that drives the train, no power passing)."""
+        return tuple(self.model.warnings) + result_caveats(self)
 
     @property
     def speeds(self) -> dict[str, float]:
@@ -208,6 +245,18 @@ class PowerFlowResult:
         from powergraph.plot.power_flow import plot_power_flow
 
         return plot_power_flow(self, frame=frame, ax=ax, **kwargs)
+
+    def __repr__(self) -> str:
+        """One line: name, DOF, ratio and efficiency (``text_report()`` has the rest)."""
+        from powergraph.statics.report import summary_line
+
+        return f"<PowerFlowResult {summary_line(self)}>"
+
+    def _repr_html_(self) -> str:
+        """A small table for notebooks: the summary and the ports."""
+        from powergraph.statics.report import html_summary
+
+        return html_summary(self)
 
     def text_report(self) -> str:
         """The readable report ``powergraph solve`` prints."""

@@ -30,17 +30,20 @@ def test_rows_match_single_solves_exactly() -> None:
         assert row.max_virtual_power_ratio == max(
             e.carrier_frame_power for e in forward.meshes) / forward.input_power
         if len(model.inputs) == 1 and len(model.outputs) == 1:
-            back = pg.solve(backdriven(model))
+            back = pg.solve(backdriven(model, forward.input_power))
             assert_conservation(back)
             assert row.backdrive_efficiency == back.efficiency
-            assert row.backdrive_self_locking == (back.efficiency <= 0)
+            assert row.backdrive_self_locking == (back.formal_efficiency <= 0)
+            if back.formal_efficiency <= 0:     # every port takes power in
+                assert back.efficiency == 0.0
         else:
             assert row.backdrive_efficiency is None and row.backdrive_note
 
 
 def test_wolfrom_backdriven_at_095_self_locks() -> None:
     row, = compare_models([pg.load_model(MODELS / "wolfrom_3k.yaml")], mesh_efficiency=0.95)
-    assert row.backdrive_self_locking is True and row.backdrive_efficiency < 0
+    assert row.backdrive_self_locking is True and row.backdrive_formal_efficiency < 0
+    assert row.backdrive_efficiency == 0.0     # from the flows: nothing leaves at a port
     assert row.efficiency > 0 and not row.self_locking
 
 
@@ -61,15 +64,15 @@ ports: [{component: H, role: input, speed: 100, power: 10}, {component: out, rol
     row, = compare_models([loads_model(text)])
     n, eta = 49.0, 0.97
     assert row.efficiency == pytest.approx(eta / (n + 1 - n * eta), rel=1e-12)
-    assert row.backdrive_efficiency == pytest.approx((n + 1) * eta - n, rel=1e-12)
-    assert row.backdrive_self_locking is True
+    assert row.backdrive_formal_efficiency == pytest.approx((n + 1) * eta - n, rel=1e-12)
+    assert row.backdrive_efficiency == 0.0 and row.backdrive_self_locking is True
 
 
 def test_compare_json_has_the_documented_keys(capsys) -> None:
-    paths = [str(MODELS / "rv40e.yaml"), str(MODELS / "wolfrom_3k.yaml")]
+    paths = [str(MODELS / "rv40e_wang2021.yaml"), str(MODELS / "wolfrom_3k.yaml")]
     assert main(["compare", *paths, "--json", "--mesh-efficiency", "0.98"]) == 0
     rows = json.loads(capsys.readouterr().out)
-    assert [r["name"] for r in rows] == ["RV-40E", "Wolfrom 3K"]
+    assert [r["name"] for r in rows] == ["RV-40E (Wang 2021)", "Wolfrom 3K"]
     assert all(KEYS <= set(r) for r in rows)
     single = pg.solve(pg.load_model(paths[0]).with_mesh_efficiency(0.98))
     assert rows[0]["efficiency"] == single.efficiency
@@ -77,7 +80,7 @@ def test_compare_json_has_the_documented_keys(capsys) -> None:
 
 def test_compare_table_and_chart(tmp_path, capsys) -> None:
     out = tmp_path / "chart.svg"
-    assert main(["compare", str(MODELS / "rv40e.yaml"), str(MODELS / "tuplin_256.yaml"),
+    assert main(["compare", str(MODELS / "rv40e_wang2021.yaml"), str(MODELS / "tuplin_256.yaml"),
                  "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "RV-40E" in text and "locks back" in text and out.stat().st_size > 1000
@@ -86,14 +89,14 @@ def test_compare_table_and_chart(tmp_path, capsys) -> None:
 
 
 def test_compare_bad_output_suffix_exits_2(tmp_path) -> None:
-    assert main(["compare", str(MODELS / "rv40e.yaml"), "-o", str(tmp_path / "x.txt")]) == 2
+    assert main(["compare", str(MODELS / "rv40e_wang2021.yaml"), "-o", str(tmp_path / "x.txt")]) == 2
     assert not (tmp_path / "x.txt").exists()
 
 
 def test_volume_and_power_density_columns_when_geometry_is_present() -> None:
     from powergraph.analyses.volume import model_volume
 
-    rv = pg.load_model(MODELS / "rv40e.yaml")
+    rv = pg.load_model(MODELS / "rv40e_wang2021.yaml")
     row, plain = compare_models([rv, pg.load_model(MODELS / "wolfrom_3k.yaml")])
     total = model_volume(rv).total_mm3
     assert row.volume_mm3 == total
@@ -115,7 +118,8 @@ def test_table_shows_locks_for_a_self_locking_back_drive(capsys) -> None:
     assert "back %" in text.splitlines()[0]     # the unit in the header, not in the cells
     assert main(["compare", path, "--mesh-efficiency", "0.98", "--json"]) == 0
     row, = json.loads(capsys.readouterr().out)
-    assert row["backdrive_efficiency"] == pytest.approx(120 * 0.98 - 119, rel=1e-9)
+    assert row["backdrive_formal_efficiency"] == pytest.approx(120 * 0.98 - 119, rel=1e-9)
+    assert row["backdrive_efficiency"] == 0.0
     assert row["backdrive_self_locking"] is True
 
 
@@ -124,7 +128,7 @@ def test_a_locked_back_drive_has_efficiency_0_and_the_reason() -> None:
     pattern (the brute force of powergraph.testing agrees), so the back-drive locks."""
     from powergraph.testing import consistent_patterns
 
-    rv = pg.load_model(MODELS / "rv40e.yaml").with_link(1, efficiency=0.2)
+    rv = pg.load_model(MODELS / "rv40e_wang2021.yaml").with_link(1, efficiency=0.2)
     assert consistent_patterns(backdriven(rv)) == []
     row, = compare_models([rv])
     assert row.backdrive_efficiency == 0.0 and row.backdrive_self_locking is True

@@ -42,7 +42,7 @@ def with_cycloid(path: Path, mesh: int, block: dict, reverse: bool = False):
 
 @pytest.fixture(scope="module")
 def rv():
-    return train_fluctuation(with_cycloid(MODELS / "rv40e.yaml", 1, RV_STAGE))
+    return train_fluctuation(with_cycloid(MODELS / "rv40e_wang2021.yaml", 1, RV_STAGE))
 
 
 def test_rv40e_output_fluctuation_by_hand(rv) -> None:
@@ -81,11 +81,11 @@ def test_khv_output_sees_the_stage_unchanged(reverse: bool) -> None:
 
 
 def test_train_without_cycloid_blocks_has_no_stages() -> None:
-    assert train_fluctuation(load_model(MODELS / "rv40e.yaml")).stages == ()
+    assert train_fluctuation(load_model(MODELS / "rv40e_wang2021.yaml")).stages == ()
 
 
 def test_impossible_stage_is_a_model_error_with_its_place() -> None:
-    model = with_cycloid(MODELS / "rv40e.yaml", 1, {**RV_STAGE, "rc": 1.5})
+    model = with_cycloid(MODELS / "rv40e_wang2021.yaml", 1, {**RV_STAGE, "rc": 1.5})
     with pytest.raises(ModelError) as info:
         train_fluctuation(model)
     assert info.value.path == "links[1].cycloid"

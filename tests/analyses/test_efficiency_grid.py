@@ -15,7 +15,7 @@ from powergraph.cli.main import main
 from powergraph.model import model_from_dict
 from powergraph.testing import assert_conservation
 
-RV = "models/rv40e_friction.yaml"
+RV = "models/rv40e.yaml"
 
 ISO_PAIR = {"name": "iso pair", "components": {0: {"role": "frame"}, 1: {"teeth": 20},
                                                2: {"teeth": 40}},

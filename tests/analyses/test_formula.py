@@ -87,7 +87,7 @@ def test_khv_closed_form() -> None:
 # --- RV-40E (Wang 2021, Table 1) ---------------------------------------------------------------
 
 def test_rv_ratio_is_one_plus_z2_z5_over_z1() -> None:
-    model = load_model(MODELS / "rv40e.yaml")
+    model = load_model(MODELS / "rv40e_wang2021.yaml")
     general = derive_formulas(model)
     z = {n: s for n, s in general.symbols.items()}
     # With any tooth difference: i = 1 + z2 z5 / (z1 (z5 - z4)); the RV's z5 - z4 = 1.
@@ -103,7 +103,7 @@ def test_rv_efficiency_of_the_hand_closed_form() -> None:
     """eta = [1 + (z2/z1) eta1 z5/(z5 - z4 eta2)]/i (benchmarks/sweep_rv.py): 0.287376
     (0.94/0.94), 0.873043 (eta2 = 0.998); back-driven at eta2 = 0.998, 0.867490 (the
     86.75 % of the README's RV table), equal to the single solve."""
-    model = load_model(MODELS / "rv40e.yaml")
+    model = load_model(MODELS / "rv40e_wang2021.yaml")
     f = derive_formulas(model)
     assert f.evaluate()["efficiency"] == pytest.approx(0.287376, abs=5e-7)
     assert f.evaluate(eta_1=0.998)["efficiency"] == pytest.approx(0.873043, abs=5e-7)
@@ -113,7 +113,7 @@ def test_rv_efficiency_of_the_hand_closed_form() -> None:
 
 
 def test_rv_virtual_power_condition_matches_solver() -> None:
-    model = load_model(MODELS / "rv40e.yaml")
+    model = load_model(MODELS / "rv40e_wang2021.yaml")
     f = derive_formulas(model)
     numeric = solved(model)
     values = {f.symbols[n]: v for n, v in f.values.items()}
@@ -126,7 +126,7 @@ def test_rv_virtual_power_condition_matches_solver() -> None:
 
 def test_rv_derivation_is_fast() -> None:
     start = time.perf_counter()
-    derive_formulas(load_model(MODELS / "rv40e.yaml"))
+    derive_formulas(load_model(MODELS / "rv40e_wang2021.yaml"))
     assert time.perf_counter() - start < 10.0
 
 
@@ -309,7 +309,7 @@ def test_outside_the_domain_the_pattern_changes() -> None:
 # --- evaluation, lambdify, output --------------------------------------------------------------
 
 def test_lambdify_vectorised() -> None:
-    model = load_model(MODELS / "rv40e.yaml")
+    model = load_model(MODELS / "rv40e_wang2021.yaml")
     f = derive_formulas(model)
     fn = f.lambdify()
     eta = np.linspace(0.9, 0.999, 7)
@@ -343,7 +343,7 @@ def test_to_dict_round_trip() -> None:
 
 
 def test_relations_are_checked() -> None:
-    model = load_model(MODELS / "rv40e.yaml")
+    model = load_model(MODELS / "rv40e_wang2021.yaml")
     with pytest.raises(UsageError, match="does not hold"):
         derive_formulas(model, {"z_4": "z_5 - 2"})
     with pytest.raises(UsageError, match="unknown symbol"):

@@ -78,7 +78,7 @@ def test_rv_values_of_the_hand_closed_form() -> None:
     # benchmarks/sweep_rv.py derives i = 1 + z2 z5/(z1 (z5 - z4)) = 121 and
     # eta = [1 + (z2/z1) eta1 z5/(z5 - z4 eta2)]/i: 0.287376 (0.94, 0.94), 0.873043
     # (eta2 = 0.998); L_12 = P (1 - 1/i)(1 - eta1) = 135.0744 W, L_45 = P (1 - eta) - L_12.
-    r = sweep(model("rv40e.yaml"), {"links.1.efficiency": [0.94, 0.998]})
+    r = sweep(model("rv40e_wang2021.yaml"), {"links.1.efficiency": [0.94, 0.998]})
     assert r.efficiency.tolist() == pytest.approx([0.287376, 0.873043], abs=5e-7)
     assert r.ratio.tolist() == pytest.approx([121.0, 121.0], rel=1e-13)
     assert r.losses[0].tolist() == pytest.approx([135.0744, 135.0744], abs=5e-5)
@@ -140,7 +140,11 @@ def test_tuplin_closed_form_forward_and_backdriven() -> None:
     np.testing.assert_allclose(forward.efficiency, 1 / (256 - 255 * eta**2), rtol=1e-11)
     np.testing.assert_allclose(forward.ratio, 256.0, rtol=1e-11)
     back = sweep(backdriven(model("tuplin_256.yaml")), {"links.*.efficiency": eta})
-    np.testing.assert_allclose(back.efficiency, 256 - 255 / eta**2, rtol=1e-10, atol=1e-11)
+    formal = 256 - 255 / eta**2
+    np.testing.assert_allclose(back.formal_efficiency, formal, rtol=1e-10, atol=1e-11)
+    # from the flows: where it self-locks both ports take power in, so nothing leaves: 0
+    np.testing.assert_allclose(back.efficiency, np.maximum(formal, 0.0), rtol=1e-10,
+                               atol=1e-11)
     assert back.self_locking[:-1].all() and not back.self_locking[-1]
 
 
@@ -162,10 +166,10 @@ def rv_variants(n: int, seed: int) -> dict:
 @pytest.mark.parametrize("backend", ["auto", "numeric"])
 def test_rv_teeth_and_efficiencies_equal_single_solves(backend) -> None:
     values = rv_variants(12, seed=1)
-    swept = sweep(model("rv40e.yaml"), values, backend=backend)
+    swept = sweep(model("rv40e_wang2021.yaml"), values, backend=backend)
     for j in range(12):
         teeth = {path.split(".")[1]: values[path][j] for path in values if "teeth" in path}
-        single = pg.solve(with_efficiencies(with_teeth("rv40e.yaml", teeth),
+        single = pg.solve(with_efficiencies(with_teeth("rv40e_wang2021.yaml", teeth),
                                             {0: values["links.0.efficiency"][j],
                                              1: values["links.1.efficiency"][j]}))
         assert_matches_single(swept, j, single)
@@ -233,7 +237,7 @@ def test_direction_change_in_a_large_sweep_uses_each_patterns_closed_form() -> N
 
 
 def test_ports_speed_and_power() -> None:
-    rv = model("rv40e.yaml")
+    rv = model("rv40e_wang2021.yaml")
     speed = np.array([50.0, 157.07963267948966, 300.0])
     power = np.array([[100.0], [2270.0]])
     swept = sweep(rv, {"ports.0.speed": speed, "ports.0.power": power})
@@ -262,7 +266,7 @@ def test_two_dof_differential_port_speeds() -> None:
 
 def test_chunks_do_not_change_the_numbers() -> None:
     values = rv_variants(1000, seed=3)
-    evaluate = compile_sweep(model("rv40e.yaml"), list(values))
+    evaluate = compile_sweep(model("rv40e_wang2021.yaml"), list(values))
     whole = evaluate(values, quiet=True)
     parts = evaluate(values, chunk_size=7, quiet=True)
     np.testing.assert_array_equal(whole.efficiency, parts.efficiency)
@@ -277,7 +281,7 @@ def test_direction_cycles_get_the_single_solvers_verdict(backend) -> None:
     # single solver searches and gives the locking verdict (docs/locking.md). The sweep
     # hands such a variant to the same search: the same verdict (status "locked",
     # efficiency 0, self-locking), never NaN where the single solver answers.
-    back = backdriven(model("rv40e.yaml"))
+    back = backdriven(model("rv40e_wang2021.yaml"))
     eta = np.array([0.1, 0.2, 0.5, 0.9])
     swept = sweep(back, {"links.1.efficiency": eta}, backend=backend)
     searched = 0
@@ -296,7 +300,7 @@ def test_direction_cycles_get_the_single_solvers_verdict(backend) -> None:
 
 
 def test_cycles_inside_a_large_sweep() -> None:
-    back = backdriven(model("rv40e.yaml"))
+    back = backdriven(model("rv40e_wang2021.yaml"))
     rng = np.random.default_rng(11)
     n = 1000
     values = {"links.0.efficiency": rng.uniform(0.05, 1.0, n),
@@ -332,7 +336,7 @@ def test_singular_speeds_are_flagged(backend) -> None:
 
 @pytest.mark.parametrize("backend", ["symbolic", "numeric"])
 def test_power_on_a_still_port_is_flagged(backend) -> None:
-    rv = model("rv40e.yaml")
+    rv = model("rv40e_wang2021.yaml")
     with pytest.raises(StaticsError):
         pg.solve(rv.with_port(0, speed=0.0))
     swept = sweep(rv, {"ports.0.speed": [0.0, 10.0]}, backend=backend)
@@ -357,13 +361,13 @@ def test_power_on_a_still_port_is_flagged(backend) -> None:
 ])
 def test_bad_paths_name_the_path(path, error, words) -> None:
     with pytest.raises(error, match=words) as info:
-        compile_sweep(model("rv40e.yaml"), [path])
+        compile_sweep(model("rv40e_wang2021.yaml"), [path])
     assert path in str(info.value) or error is UsageError
 
 
 def test_teeth_of_a_gear_whose_meshes_give_ratios_change_nothing() -> None:
     with pytest.raises(ModelError, match="changes nothing"):
-        compile_sweep(model("rv40e.yaml"), ["links.0.ratio", "components.1.teeth"])
+        compile_sweep(model("rv40e_wang2021.yaml"), ["links.0.ratio", "components.1.teeth"])
 
 
 @pytest.mark.parametrize("path, values, words", [
@@ -378,23 +382,23 @@ def test_teeth_of_a_gear_whose_meshes_give_ratios_change_nothing() -> None:
 ])
 def test_bad_values_name_the_path(path, values, words) -> None:
     with pytest.raises(ModelError, match=words) as info:
-        sweep(model("rv40e.yaml"), {path: values})
+        sweep(model("rv40e_wang2021.yaml"), {path: values})
     assert info.value.path == path
 
 
 def test_values_must_match_the_compiled_paths_and_broadcast() -> None:
-    evaluate = compile_sweep(model("rv40e.yaml"), ["links.0.efficiency",
+    evaluate = compile_sweep(model("rv40e_wang2021.yaml"), ["links.0.efficiency",
                                                    "links.1.efficiency"])
     with pytest.raises(UsageError, match="missing links.1.efficiency"):
         evaluate({"links.0.efficiency": [0.9]})
     with pytest.raises(UsageError, match="do not broadcast"):
         evaluate({"links.0.efficiency": [0.9, 0.95], "links.1.efficiency": [0.9, 0.9, 0.9]})
     with pytest.raises(UsageError, match="same model value"):
-        compile_sweep(model("rv40e.yaml"), ["links.*.efficiency", "links.1.efficiency"])
+        compile_sweep(model("rv40e_wang2021.yaml"), ["links.*.efficiency", "links.1.efficiency"])
 
 
 def test_parse_set_ranges_lists_units_and_whole_teeth() -> None:
-    rv = model("rv40e.yaml")
+    rv = model("rv40e_wang2021.yaml")
     assert parse_set(rv, "links.1.efficiency=0.9:1.0:3")[1].tolist() == \
         pytest.approx([0.9, 0.95, 1.0])
     assert parse_set(rv, "components.5.teeth=38:42:5")[1].tolist() == [38, 39, 40, 41, 42]
@@ -410,7 +414,7 @@ def test_parse_set_ranges_lists_units_and_whole_teeth() -> None:
 # --- results ----------------------------------------------------------------------------
 
 def test_grid_csv_dict_and_curves() -> None:
-    rv = model("rv40e.yaml")
+    rv = model("rv40e_wang2021.yaml")
     grid = cartesian({"links.1.efficiency": np.array([0.9, 0.95, 1.0]),
                       "components.1.teeth": np.array([10, 12])})
     swept = sweep(rv, grid)
@@ -424,7 +428,8 @@ def test_grid_csv_dict_and_curves() -> None:
     np.testing.assert_allclose(rows[:, 2], 1 + 36 * 40 / rows[:, 1], rtol=REL)
     extra = swept.to_csv(extra=True).splitlines()[0].split(",")
     assert extra[4:] == ["input_power [W]", "output_power [W]", "total_loss [W]",
-                         "self_locking", "converged", "status", "loss_link_0 [W]",
+                         "self_locking", "converged", "status", "formal_efficiency [-]",
+                         "loss_link_0 [W]",
                          "loss_link_1 [W]", "loss_link_5 [W]"]
     data = swept.to_dict()
     assert data["shape"] == [3, 2] and data["status"] == ["ok"] * 6
@@ -439,14 +444,14 @@ def test_progress_bar_unless_quiet(monkeypatch, capsys) -> None:
 
     monkeypatch.setattr(compiled, "PROGRESS_DELAY", 0.0)
     values = {"links.1.efficiency": np.linspace(0.9, 1.0, 3000)}
-    sweep(model("rv40e.yaml"), values, chunk_size=1000)
+    sweep(model("rv40e_wang2021.yaml"), values, chunk_size=1000)
     assert "sweep" in capsys.readouterr().err
-    sweep(model("rv40e.yaml"), values, chunk_size=1000, quiet=True)
+    sweep(model("rv40e_wang2021.yaml"), values, chunk_size=1000, quiet=True)
     assert capsys.readouterr().err == ""
 
 
 def test_the_sweep_does_not_change_the_model() -> None:
-    rv = model("rv40e.yaml")
+    rv = model("rv40e_wang2021.yaml")
     before = (rv.links, rv.components, rv.ports)
     sweep(rv, {"links.*.efficiency": [0.9], "components.1.teeth": [15]})
     assert (rv.links, rv.components, rv.ports) == before
@@ -469,7 +474,7 @@ def test_benchmark_closed_form_equals_single_solves() -> None:
     assert hand["valid"].all()
     for j in range(8):
         teeth = {p.split(".")[1]: values[p][j] for p in bench.PATHS[:4]}
-        single = pg.solve(with_efficiencies(with_teeth("rv40e.yaml", teeth),
+        single = pg.solve(with_efficiencies(with_teeth("rv40e_wang2021.yaml", teeth),
                                             {0: values[bench.PATHS[4]][j],
                                              1: values[bench.PATHS[5]][j]}))
         assert hand["ratio"][j] == pytest.approx(single.ratio, rel=REL)

@@ -39,7 +39,7 @@ def assert_same(a, b, rel: float = 0.0) -> None:
 
 
 def test_in_parts_here_is_the_plain_sweep_exactly() -> None:
-    model, grid = load_model(MODELS / "rv40e.yaml"), rv_grid()
+    model, grid = load_model(MODELS / "rv40e_wang2021.yaml"), rv_grid()
     plain = sweep(model, grid, quiet=True)
     parts = sweep_on_cluster(model, grid, part_size=CHUNK_SIZE)
     assert_same(parts, plain)
@@ -49,7 +49,7 @@ def test_in_parts_here_is_the_plain_sweep_exactly() -> None:
 
 def test_part_size_must_be_whole_chunks() -> None:
     with pytest.raises(UsageError, match="multiple"):
-        sweep_on_cluster(load_model(MODELS / "rv40e.yaml"), rv_grid(), part_size=1000)
+        sweep_on_cluster(load_model(MODELS / "rv40e_wang2021.yaml"), rv_grid(), part_size=1000)
 
 
 @pytest.mark.slow  # starts a local cluster of two worker processes
@@ -57,7 +57,7 @@ def test_two_local_workers_give_the_single_process_result() -> None:
     """Numeric backend: identical to the last bit. Symbolic (closed forms learned per
     worker): a variant may take the closed form on one worker and the iteration on the
     other, equal to rounding; statuses and drivers identical."""
-    model, grid = load_model(MODELS / "rv40e.yaml"), rv_grid()
+    model, grid = load_model(MODELS / "rv40e_wang2021.yaml"), rv_grid()
     numeric = sweep(model, grid, backend="numeric", quiet=True)
     assert_same(sweep_on_cluster(model, grid, backend="numeric", part_size=CHUNK_SIZE,
                                  workers=2), numeric)

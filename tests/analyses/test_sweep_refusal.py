@@ -53,7 +53,7 @@ def test_the_compiled_sweep_refuses_loss_blocks_naming_the_place(data, place) ->
 
 
 def test_the_friction_rv_is_refused_at_its_first_block_and_its_pins() -> None:
-    model = pg.load_model("models/rv40e_friction.yaml")
+    model = pg.load_model("models/rv40e.yaml")
     with pytest.raises(ModelError) as info:
         sweep(model, {"ports.0.speed": [100.0, 200.0]})
     assert info.value.path == "links[0].friction"
@@ -93,7 +93,7 @@ def _status(argv: list[str]) -> int:
 
 
 def test_cli_sweep_and_tolerance_exit_2_with_one_line(tmp_path, capsys) -> None:
-    assert _status(["sweep", "models/rv40e_friction.yaml", "--set",
+    assert _status(["sweep", "models/rv40e.yaml", "--set",
                     "ports.0.speed=100:200:3"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "links[0].friction: the compiled sweep takes constant " \

@@ -19,7 +19,7 @@ from powergraph.errors import ModelError
 from powergraph.model import load_model, loads_model
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = ROOT / "models" / "rv40e.yaml"
+RV40E = ROOT / "models" / "rv40e_wang2021.yaml"
 PI = math.pi
 ALPHA = math.radians(20)
 
@@ -89,7 +89,7 @@ def test_eq7_planet_frame_2_as_printed() -> None:
     assert got == pytest.approx(printed, rel=1e-13)
 
 
-# --- the RV-40E model: each part by hand from the numbers in models/rv40e.yaml ------------
+# --- the RV-40E model: each part by hand from the numbers in models/rv40e_wang2021.yaml ------------
 
 RV40E_BY_HAND = {            # one part, / π
     "1": 12 * (1.5**2 * 12**2 / 4 - 0**2),                      # 972
@@ -142,7 +142,7 @@ def test_rv40e_total_is_eq8(rv40e) -> None:
 
 def test_model_volume_is_none_without_geometry_and_volume_raises() -> None:
     text = RV40E.read_text()
-    plain = load_model(ROOT / "models" / "rv40e.yaml")
+    plain = load_model(ROOT / "models" / "rv40e_wang2021.yaml")
     assert vol.model_volume(plain) is not None
     bare = loads_model(text.split("components:")[0] + """components:
   0: {role: frame}

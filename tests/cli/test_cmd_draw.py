@@ -10,7 +10,7 @@ import pytest
 from powergraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
-RV = str(ROOT / "models" / "rv40e.yaml")
+RV = str(ROOT / "models" / "rv40e_wang2021.yaml")
 KHV = str(ROOT / "models" / "khv_involute.yaml")
 MAGIC = {".png": b"\x89PNG\r\n\x1a\n", ".pdf": b"%PDF-"}
 

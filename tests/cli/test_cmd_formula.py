@@ -14,7 +14,7 @@ from powergraph.cli.main import main
 from powergraph.model import load_model
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = str(ROOT / "models" / "rv40e.yaml")
+RV40E = str(ROOT / "models" / "rv40e_wang2021.yaml")
 KHV = str(ROOT / "models" / "khv_involute.yaml")
 
 

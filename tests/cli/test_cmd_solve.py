@@ -14,7 +14,7 @@ import yaml
 from powergraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
-RV = str(ROOT / "models" / "rv40e.yaml")
+RV = str(ROOT / "models" / "rv40e_wang2021.yaml")
 FORMAT_KEYS = {"name", "method", "dof", "ratio", "efficiency", "input_power", "output_power",
              "total_loss", "speeds", "torques", "meshes", "flows", "circulating_power",
              "self_locking"}
@@ -31,7 +31,7 @@ def test_solve_json_has_the_spec_keys_and_reference_numbers(capsys) -> None:
     assert main(["solve", RV, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert FORMAT_KEYS <= set(out)
-    assert out["method"] == "virtual-power" and out["dof"] == 1 and out["name"] == "RV-40E"
+    assert out["method"] == "virtual-power" and out["dof"] == 1 and out["name"] == "RV-40E (Wang 2021)"
     assert out["ratio"] == pytest.approx(121, rel=1e-12)
     expected = PUBLISHED["rv40e_virtual_power"]["both_094"]
     assert out["efficiency"] == pytest.approx(expected["efficiency"], abs=5e-7)
@@ -57,8 +57,9 @@ def test_mesh_efficiency_override(capsys) -> None:
 def test_readable_report_mentions_every_mesh_and_efficiency(capsys) -> None:
     assert main(["solve", RV]) == 0
     text = capsys.readouterr().out
-    assert "28.7376 %" in text and "1500" in text  # efficiency and input speed in rpm
-    assert "135.0744 W" in text and "1.4826 kW" in text
+    assert "28.74 %" in text and "1,500.00" in text  # efficiency and input speed in rpm
+    # one unit for the mesh table (kW), the losses of published_values.yaml
+    assert "loss kW" in text and "0.13507" in text and "1.48258" in text
 
 
 def test_check_reports_dof(capsys) -> None:
@@ -118,3 +119,79 @@ def test_solve_reports_the_cycloid_fluctuation_at_the_output(capsys) -> None:
         PUBLISHED["rv40e_virtual_power"]["both_094"]["efficiency"], abs=5e-7)
     assert main(["solve", RV, "--json"]) == 0
     assert "cycloid_fluctuation" not in json.loads(capsys.readouterr().out)
+
+
+FIRST_RUN = str(ROOT / "models" / "rv40e.yaml")
+
+
+def test_first_run_is_a_believable_rv40e(capsys) -> None:
+    """models/rv40e.yaml has its losses from friction and geometry: a catalogue RV-40E is
+    80–90 % efficient at its rating; the report says where the power goes."""
+    assert main(["solve", FIRST_RUN, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert 0.75 < out["efficiency"] < 0.95 and out["warnings"] == []
+    assert [p["name"] for p in out["ports"]] == ["motor", "arm"]
+    assert [p["direction"] for p in out["ports"]] == ["in", "out"]
+    # conservation: the ports' powers (positive into the train) add up to the losses,
+    # and the losses table to the total loss
+    assert sum(p["power"] for p in out["ports"]) == pytest.approx(out["total_loss"], rel=1e-9)
+    assert sum(x["power"] for x in out["loss_breakdown"]) == pytest.approx(out["total_loss"],
+                                                                        rel=1e-12)
+    assert main(["solve", FIRST_RUN]) == 0
+    text = capsys.readouterr().out
+    assert "where the power goes" in text and "pins" in text and "crank bearings" in text
+    assert "121 : 1" in text and "motor" in text and "warning" not in text
+
+
+def test_json_keeps_every_key_and_adds_ports_and_warnings(capsys) -> None:
+    assert main(["solve", RV, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert FORMAT_KEYS | {"ports", "warnings", "formal_efficiency", "efficiency_note",
+                          "loss_breakdown", "passes", "load_sharing_assumed"} <= set(out)
+    for port in out["ports"]:
+        assert set(port) == {"component", "name", "role", "speed", "torque", "power",
+                             "direction"}
+        assert port["power"] == pytest.approx(port["torque"] * port["speed"], rel=1e-12)
+    assert [p["component"] for p in out["ports"]] == [1, 6]    # ids as in the file
+    assert out["formal_efficiency"] == pytest.approx(out["efficiency"], rel=1e-12)
+
+
+def _with_pin_mesh(tmp_path, efficiency: float) -> str:
+    text = Path(RV).read_text().replace(
+        "{type: mesh, between: [4, 5], carrier: 3, efficiency: 0.94}",
+        f"{{type: mesh, between: [4, 5], carrier: 3, efficiency: {efficiency}}}")
+    assert str(efficiency) in text
+    path = tmp_path / "rv.yaml"
+    path.write_text(text)
+    return str(path)
+
+
+def test_backdrive_reports_the_backdriven_train(capsys, tmp_path) -> None:
+    """Published (tests/data/published_values.yaml): first stage 0.94, pin mesh 0.998,
+    back-driven 0.867490."""
+    path = _with_pin_mesh(tmp_path, 0.998)
+    assert main(["solve", path, "--backdrive", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    expected = PUBLISHED["rv40e_virtual_power"]["backdriven_needle_0998"]["efficiency"]
+    assert out["efficiency"] == pytest.approx(expected, abs=5e-7)
+    assert out["name"].endswith("(back-driven)")
+    assert [p["role"] for p in out["ports"]] == ["output", "input"]
+    assert [p["direction"] for p in out["ports"]] == ["out", "in"]
+    assert main(["solve", path, "--backdrive"]) == 0
+    assert "1 : 121" in capsys.readouterr().out
+
+
+def test_backdrive_of_a_self_locking_train_says_so(capsys) -> None:
+    """The Table 1 RV (both meshes 0.94) back-driven: formal efficiency < 0; from the
+    flows nothing leaves at a port, so 0."""
+    assert main(["solve", RV, "--backdrive", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["self_locking"] is True and out["efficiency"] == 0.0
+    assert out["formal_efficiency"] < 0
+    assert all(p["direction"] == "in" for p in out["ports"])
+
+
+def test_backdrive_needs_one_input_and_one_output() -> None:
+    proc = run_cli("solve", str(ROOT / "models" / "bevel_differential.yaml"), "--backdrive")
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert proc.stderr.startswith("powergraph: error: --backdrive needs")

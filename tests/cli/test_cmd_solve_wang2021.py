@@ -14,7 +14,7 @@ import yaml
 from powergraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = str(ROOT / "models" / "rv40e.yaml")
+RV40E = str(ROOT / "models" / "rv40e_wang2021.yaml")
 RENAMED = str(ROOT / "tests" / "data" / "rv_renamed_shuffled.yaml")
 SMALL = ROOT / "tests" / "data" / "rv_small.yaml"
 PUBLISHED = yaml.safe_load((ROOT / "tests" / "data" / "published_values.yaml").read_text())

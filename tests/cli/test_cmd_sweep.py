@@ -16,7 +16,7 @@ from powergraph.cli.main import main
 from powergraph.model import load_model
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = str(ROOT / "models" / "rv40e.yaml")
+RV40E = str(ROOT / "models" / "rv40e_wang2021.yaml")
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:

@@ -99,6 +99,6 @@ def test_bad_tolerance_names_its_place(capsys, tmp_path) -> None:
 
 
 def test_model_without_tolerances_exits_2(capsys) -> None:
-    status, out, err = run(capsys, str(ROOT / "models" / "rv40e.yaml"))
+    status, out, err = run(capsys, str(ROOT / "models" / "rv40e_wang2021.yaml"))
     assert status == 2
     assert "no tolerances" in err

@@ -1,6 +1,6 @@
 """``powergraph volume MODEL [--json] [--plot FILE]``: Pan & Wang (2019), "Volume calculation
 of RV reducer" (docs/volume.md). The paper prints no inputs for its volumes, so the
-expected values are hand computations of the geometry in models/rv40e.yaml."""
+expected values are hand computations of the geometry in models/rv40e_wang2021.yaml."""
 from __future__ import annotations
 
 import json
@@ -12,8 +12,8 @@ import pytest
 from powergraph.cli.main import main
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = str(ROOT / "models" / "rv40e.yaml")
-# Total of models/rv40e.yaml by hand, / π (see tests/analyses/test_volume.py for the parts):
+RV40E = str(ROOT / "models" / "rv40e_wang2021.yaml")
+# Total of models/rv40e_wang2021.yaml by hand, / π (see tests/analyses/test_volume.py for the parts):
 # 972 + 2·7548 + 2·6980 + 2·27058.2 + 31200 + 38882 + 47682
 RV40E_TOTAL = math.pi * (972 + 2 * 7548 + 2 * 6980 + 2 * 27058.2 + 31200 + 38882 + 47682)
 

@@ -54,7 +54,7 @@ def test_check_runs_the_load_analysis(case: str, tmp_path) -> None:
 
 def test_check_reports_the_loads_it_takes() -> None:
     # RV-40E: 2 ports, 1 DOF -> it takes the power or torque of 2 - 1 = 1 port (1 given).
-    status, out, _ = run("check", str(ROOT / "models" / "rv40e.yaml"))
+    status, out, _ = run("check", str(ROOT / "models" / "rv40e_wang2021.yaml"))
     assert status == 0 and "1 DOF, loads of 1 of 1 port(s) given" in out
 
 
@@ -82,7 +82,7 @@ def test_check_dev_zero_is_refused_at_once() -> None:
 
 
 def test_max_model_size_option(tmp_path) -> None:
-    rv = str(ROOT / "models" / "rv40e.yaml")
+    rv = str(ROOT / "models" / "rv40e_wang2021.yaml")
     status, _, err = run("--max-model-size", "1k", "check", rv)
     assert "the limit is 1000 bytes" in assert_one_error_line(status, err)
     assert run("--max-model-size", "1M", "check", rv)[0] == 0
@@ -91,7 +91,7 @@ def test_max_model_size_option(tmp_path) -> None:
 
 @pytest.mark.parametrize("dpi", ["100000", "0", "5", "nan"])
 def test_draw_dpi_out_of_range_exits_2(dpi: str, tmp_path) -> None:
-    status, _, err = run("draw", str(ROOT / "models" / "rv40e.yaml"), "-o",
+    status, _, err = run("draw", str(ROOT / "models" / "rv40e_wang2021.yaml"), "-o",
                          str(tmp_path / "x.png"), "--dpi", dpi)
     assert status == 2 and "--dpi" in err and not (tmp_path / "x.png").exists()
 

@@ -17,7 +17,7 @@ from powergraph.gears.cycloid_loss import (CrankBearing, OutputPins, PinContact,
                                            bearing_loss_factor, cycloid_mesh_loss,
                                            output_loss_factor, pin_loss_factor)
 
-#: The RV-40E's cycloid stage as used in published studies (models/rv40e.yaml).
+#: The RV-40E's cycloid stage as used in published studies (models/rv40e_wang2021.yaml).
 RV = PinRing(lobes=39, circle_radius=64.0, pin_radius=3.0, eccentricity=1.3)
 
 

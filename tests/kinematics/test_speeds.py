@@ -14,7 +14,7 @@ MODELS = Path(__file__).resolve().parents[2] / "models"
 
 
 def test_rv40e_speeds_are_reference_b() -> None:
-    kin = solve_speeds(pg.load_model(MODELS / "rv40e.yaml"))
+    kin = solve_speeds(pg.load_model(MODELS / "rv40e_wang2021.yaml"))
     assert kin.speed("2") == pytest.approx(-50.6290, abs=5e-5) == kin.speed("3")
     assert kin.speed("4") == pytest.approx(1.29818, abs=5e-6)
     assert kin.speed("6") == kin.speed("7") == kin.speed("4")
@@ -22,7 +22,7 @@ def test_rv40e_speeds_are_reference_b() -> None:
     assert kin.ratio == pytest.approx(1 + 36 * 40 / 12, rel=1e-12)   # i = 1 + z2 z5 / z1
 
 
-@pytest.mark.parametrize("name,dof", [("rv40e.yaml", 1), ("bevel_differential.yaml", 2),
+@pytest.mark.parametrize("name,dof", [("rv40e_wang2021.yaml", 1), ("bevel_differential.yaml", 2),
                                       ("wolfrom_3k.yaml", 1), ("ravigneaux_second.yaml", 1)])
 def test_degrees_of_freedom(name: str, dof: int) -> None:
     assert degrees_of_freedom(pg.load_model(MODELS / name)) == dof
@@ -42,7 +42,7 @@ ports: [{component: 1, role: input}, {component: 2, role: output}]
 
 
 def test_backdriven_swaps_ports_and_keeps_the_motion() -> None:
-    model = pg.load_model(MODELS / "rv40e.yaml")
+    model = pg.load_model(MODELS / "rv40e_wang2021.yaml")
     back = backdriven(model)
     assert [(p.component, p.role) for p in back.ports] == [("1", "output"), ("6", "input")]
     assert back.inputs[0].power == model.inputs[0].power

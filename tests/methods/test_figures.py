@@ -27,7 +27,7 @@ from powergraph.methods.figures import (
 )
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = ROOT / "models" / "rv40e.yaml"
+RV40E = ROOT / "models" / "rv40e_wang2021.yaml"
 PUBLISHED = yaml.safe_load((ROOT / "tests" / "data" / "published_values.yaml").read_text())
 VIRTUAL_POWER = PUBLISHED["rv40e_virtual_power"]
 

@@ -20,7 +20,7 @@ from powergraph.methods.wang2021 import solve_wang2021
 from powergraph.testing import assert_conservation
 
 ROOT = Path(__file__).resolve().parents[2]
-RV40E = ROOT / "models" / "rv40e.yaml"
+RV40E = ROOT / "models" / "rv40e_wang2021.yaml"
 RENAMED = ROOT / "tests" / "data" / "rv_renamed_shuffled.yaml"
 SMALL = ROOT / "tests" / "data" / "rv_small.yaml"
 
@@ -346,7 +346,7 @@ def test_friction_derived_efficiencies_are_refused_not_read_as_one(capsys) -> No
     first such block, instead of treating that mesh as ideal."""
     from powergraph.cli.main import main
 
-    friction_rv = ROOT / "models" / "rv40e_friction.yaml"
+    friction_rv = ROOT / "models" / "rv40e.yaml"
     with pytest.raises(MethodNotApplicableError) as caught:
         solve_wang2021(pg.load_model(friction_rv))
     assert caught.value.path == "links[0].friction"

@@ -96,7 +96,7 @@ def test_every_library_model_satisfies_the_schema(path: Path) -> None:
     load_model(path)
 
 
-RV = yaml.safe_load((ROOT / "models" / "rv40e.yaml").read_text())
+RV = yaml.safe_load((ROOT / "models" / "rv40e_wang2021.yaml").read_text())
 
 
 def mutated(change) -> dict:

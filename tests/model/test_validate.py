@@ -35,7 +35,7 @@ def test_unsolvable_train_is_a_model_error(case: dict) -> None:
 
 
 def test_valid_model_is_immutable_and_keeps_ids() -> None:
-    model = pg.load_model(Path(__file__).resolve().parents[2] / "models" / "rv40e.yaml")
+    model = pg.load_model(Path(__file__).resolve().parents[2] / "models" / "rv40e_wang2021.yaml")
     assert [b.id for b in model.bodies] == ["0/5", "1", "2/3", "4", "6/7"]
     assert model.components["5"].internal and model.components["2"].count == 2
     with pytest.raises(Exception):
@@ -58,7 +58,7 @@ ports: [{component: 1, role: input}, {component: 2, role: output}]
 def test_network_view_has_components_as_nodes_and_links_as_edges() -> None:
     from powergraph.model import to_networkx
 
-    model = pg.load_model(Path(__file__).resolve().parents[2] / "models" / "rv40e.yaml")
+    model = pg.load_model(Path(__file__).resolve().parents[2] / "models" / "rv40e_wang2021.yaml")
     graph = to_networkx(model)
     assert set(graph.nodes) == set(model.components)
     assert graph.number_of_edges() == len(model.links)

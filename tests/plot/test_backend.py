@@ -37,7 +37,7 @@ def test_drawing_keeps_mplbackend(backend: str) -> None:
             "import powergraph.plot.power_flow, powergraph.plot.wang2021, "
             "powergraph.plot.cycloid, powergraph.plot.backlash, powergraph.plot.volume, "
             "powergraph.plot.sweep, powergraph.plot.compare\n"
-            "ax = pg.solve(pg.load_model('models/rv40e.yaml')).plot(frame='3')\n"
+            "ax = pg.solve(pg.load_model('models/rv40e_wang2021.yaml')).plot(frame='3')\n"
             "print(matplotlib.get_backend(), type(ax.figure.canvas).__module__)\n")
     name, canvas = run_python(code, backend).split()
     assert name == backend

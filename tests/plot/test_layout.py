@@ -46,7 +46,7 @@ def views_of(model, solve_ok):
 
 @pytest.fixture(scope="module")
 def rv40e():
-    return pg.load_model(str(ROOT / "models" / "rv40e.yaml"))
+    return pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml"))
 
 
 # --- content: the view -----------------------------------------------------------------
@@ -75,7 +75,7 @@ def test_view_is_the_results_flow_graph(rv40e, solve_ok, frame) -> None:
 
 def test_titles_say_whose_frame(rv40e, solve_ok) -> None:
     result = solve_ok(rv40e)
-    assert flow_view(result).title == "RV-40E: actual powers (ground frame)"
+    assert flow_view(result).title == "RV-40E (Wang 2021): actual powers (ground frame)"
     assert flow_view(result, "0").frame_body is None          # a member of the housing
     assert flow_view(result, 5).frame_body is None
     seen = flow_view(result, "3")

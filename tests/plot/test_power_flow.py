@@ -189,7 +189,7 @@ def test_trains_never_seen(name, solve_ok) -> None:
 
 
 def test_rv40e_paper_views(solve_ok) -> None:
-    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))
+    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml")))
     ax = plot_power_flow(result)
     arrow, label = ax.powergraph_artists[("0/5", "mesh 4-5")]   # principle 1: 0 W
     assert label.get_text() == "0 W\n0 %"
@@ -205,7 +205,7 @@ def test_rv40e_paper_views(solve_ok) -> None:
 
 
 def test_draws_into_given_axes_and_via_result(solve_ok) -> None:
-    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))
+    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml")))
     fig, axes = plt.subplots(3, 1, figsize=(8, 8))
     for ax, frame in zip(axes, [None, "7", "3"]):
         assert result.plot(frame=frame, ax=ax) is ax
@@ -225,7 +225,7 @@ def test_same_drawing_twice(solve_ok) -> None:
 
 def test_wang2021_result_draws(solve_ok) -> None:
     wang = pytest.importorskip("powergraph.methods.wang2021")
-    result = wang.solve_wang2021(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))
+    result = wang.solve_wang2021(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml")))
     ax = plot_power_flow(result)
     assert set(ax.powergraph_artists) == {(f.source, f.target) for f in result.flows()}
     assert "method wang2021" in ax.get_title()
@@ -259,7 +259,7 @@ def test_draws_a_plain_list_of_flows() -> None:
 
 
 def test_bad_frame(solve_ok) -> None:
-    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))
+    result = solve_ok(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml")))
     with pytest.raises(UsageError, match="unknown component"):
         plot_power_flow(result, "nope")
     assert flow_view(result, "7").frame_body == "6/7"
@@ -299,13 +299,13 @@ def test_two_motors_both_on_the_left(solve_ok) -> None:
 def test_back_driven_rv_is_marked_self_locking(solve_ok) -> None:
     from powergraph.kinematics import backdriven
 
-    result = solve_ok(backdriven(pg.load_model(str(ROOT / "models" / "rv40e.yaml"))))
+    result = solve_ok(backdriven(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml"))))
     assert result.self_locking
     ax = plot_power_flow(result)
     check_drawing(result, None, ax)
     assert "SELF-LOCKING" in ax.get_title()
     assert "SELF-LOCKING" not in plot_power_flow(
-        solve_ok(pg.load_model(str(ROOT / "models" / "rv40e.yaml")))).get_title()
+        solve_ok(pg.load_model(str(ROOT / "models" / "rv40e_wang2021.yaml")))).get_title()
 
 
 BEARINGS = """

@@ -203,7 +203,7 @@ def test_rv40e_crank_bearings_and_output_drag() -> None:
 def _rv_with_bearings() -> dict:
     import yaml
 
-    data = yaml.safe_load((MODELS / "rv40e.yaml").read_text())
+    data = yaml.safe_load((MODELS / "rv40e_wang2021.yaml").read_text())
     mesh = data["links"][0]
     mesh.pop("efficiency", None)
     mesh.update(friction={"mu": 0.05}, geometry={"module": 1.5, "shifts": [0.3, -0.3]})
@@ -225,7 +225,7 @@ def test_divergent_bearing_law_is_a_solve_error() -> None:
 def test_models_without_blocks_are_unchanged_and_zero_blocks_change_nothing(path) -> None:
     # A bearing whose friction and drag are zero applies no torque: the solve must be the
     # same, bit for bit, as the model without it (and without any bearing state). A library
-    # model with bearing or drag blocks (models/rv40e_friction.yaml) is taken without them.
+    # model with bearing or drag blocks (models/rv40e.yaml) is taken without them.
     import yaml
 
     data = yaml.safe_load(path.read_text())

@@ -96,7 +96,7 @@ def test_planets_share_the_load() -> None:
 
 
 def test_models_without_friction_are_unchanged() -> None:
-    result = pg.solve(pg.load_model("models/rv40e.yaml"))
+    result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))
     assert result.friction == () and result.friction_passes == 0
     assert result.efficiency == pytest.approx(0.287376, abs=5e-7)   # tests/data/published_values.yaml
 

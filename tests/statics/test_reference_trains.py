@@ -74,7 +74,7 @@ HAND_TESTED = {
     "bevel_differential.yaml": "tests/statics/test_trains.py::test_bevel_differential_torque_bias",
     "closed_differential.yaml":
         "tests/statics/test_trains.py::test_closed_differential_circulates_twice_the_input_when_ideal",
-    "rv40e_friction.yaml": "tests/statics/test_trains.py::"
+    "rv40e.yaml": "tests/statics/test_trains.py::"
                            "test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage",
 }
 

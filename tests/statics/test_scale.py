@@ -153,7 +153,7 @@ def test_undetermined_trains_are_still_refused(case: dict, path) -> None:
 def test_solve_does_not_import_scipy() -> None:
     """A small train takes the dense path: `powergraph solve` never loads scipy."""
     code = ("import sys; from powergraph.cli.main import main; "
-            "main(['solve', 'models/rv40e.yaml', '--json']); "
+            "main(['solve', 'models/rv40e_wang2021.yaml', '--json']); "
             "print(sorted(m for m in ('scipy', 'networkx', 'sympy', 'pint', 'matplotlib') "
             "if m in sys.modules), file=sys.stderr)")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

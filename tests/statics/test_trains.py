@@ -49,7 +49,8 @@ def test_wolfrom_efficiency_hand_derivation() -> None:
 
 def test_wolfrom_backdriven_self_locks_at_095() -> None:
     result = solve(backdriven(load("wolfrom_3k.yaml").with_mesh_efficiency(0.95)))
-    assert result.self_locking and result.efficiency < 0
+    assert result.self_locking and result.formal_efficiency < 0
+    assert result.efficiency == 0.0     # both ports take power in: nothing leaves
     # at 0.99 it back-drives: efficiency between 0 and the forward one
     back = solve(backdriven(load("wolfrom_3k.yaml").with_mesh_efficiency(0.99)))
     forward = solve(load("wolfrom_3k.yaml").with_mesh_efficiency(0.99))
@@ -134,7 +135,7 @@ def test_count_changes_no_speed_and_no_total_torque() -> None:
 
 
 def test_solve_never_mutates_the_model() -> None:
-    model = load("rv40e.yaml")
+    model = load("rv40e_wang2021.yaml")
     before = (model.links, model.ports, dict(model.components), model.bodies)
     solve(model)
     solve(backdriven(model))
@@ -142,7 +143,7 @@ def test_solve_never_mutates_the_model() -> None:
 
 
 def test_losses_are_the_same_in_every_frame() -> None:
-    result = solve(load("rv40e.yaml"))
+    result = solve(load("rv40e_wang2021.yaml"))
     for body in result.model.bodies:
         graph = result.flow_graph(body.members[0])
         into_loss = sum(d["power"] for _, v, d in graph.in_edges("loss", data=True))
@@ -152,7 +153,7 @@ def test_losses_are_the_same_in_every_frame() -> None:
 def test_rv_cycloid_mesh_rolls_n_plus_one_times_its_power() -> None:
     """docs/theory.md: in the crank's frame the cycloid-pin mesh passes (N + 1) = 40 × the power
     it delivers to the cycloid: |w4 - w3| / |w4| with w3/w4 = z4/(z4 - z5) = -39 (Eq. 4)."""
-    result = solve(load("rv40e.yaml").with_mesh_efficiency(1.0))
+    result = solve(load("rv40e_wang2021.yaml").with_mesh_efficiency(1.0))
     mesh = result.element(1)
     into_cycloid = next(f.power for f in result.flows()
                         if f.source == "mesh 4-5" and f.target == "4")
@@ -193,7 +194,7 @@ ports: [{component: 1, role: input}, {component: 2, role: output}]
 def _rv40e_friction_data() -> dict:
     from powergraph.model.yaml_loader import load_yaml_file
 
-    return load_yaml_file(MODELS / "rv40e_friction.yaml")
+    return load_yaml_file(MODELS / "rv40e.yaml")
 
 
 def _eta_c() -> float:
@@ -206,7 +207,7 @@ def _eta_c() -> float:
 
 
 def test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage() -> None:
-    """models/rv40e_friction.yaml without its support bearings' friction and drag blocks,
+    """models/rv40e.yaml without its support bearings' friction and drag blocks,
     against a hand derivation (docs/losses.md).
 
     Speeds: the output body 6/7 turns at ω, the crank 2/3 at −N ω (N = z4 = 39, the
@@ -241,7 +242,7 @@ def test_rv40e_friction_model_is_the_khv_formula_composed_with_the_first_stage()
 
 
 def test_rv40e_friction_model_with_its_support_bearings_by_hand() -> None:
-    """models/rv40e_friction.yaml with its support bearings, against the derivation above
+    """models/rv40e.yaml with its support bearings, against the derivation above
     extended by the bearing torques (docs/losses.md, "Bearing friction and drag").
 
     The three bearings at ω = 15 rpm output (speeds as above):
@@ -264,7 +265,7 @@ def test_rv40e_friction_model_with_its_support_bearings_by_hand() -> None:
 
     T_in = T1' + M_in, and η = 412 ω / (T_in · 121 ω). Each bearing loses M·|Δω|.
     """
-    result = solve(load("rv40e_friction.yaml"))
+    result = solve(load("rv40e.yaml"))
     assert_conservation(result)
     eta_1 = result.friction[0].efficiency
     a, n, mu, d, r_1 = 36 / 12, 39, 0.0018, 0.020, 0.009

@@ -53,7 +53,7 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> f = derive_formulas(load_model("models/rv40e.yaml"), {"z_4": "z_5 - 1"})  # doctest: +SKIP
+    >>> f = derive_formulas(load_model("models/rv40e_wang2021.yaml"), {"z_4": "z_5 - 1"})  # doctest: +SKIP
     >>> f.ratio                                                                  # doctest: +SKIP
     1 + z_2*z_5/z_1
     """

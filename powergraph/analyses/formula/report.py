@@ -63,7 +63,7 @@ def text_report(result: FormulaResult) -> str:
     --------
     >>> from powergraph.model import load_model
     >>> from powergraph.analyses.formula import derive_formulas
-    >>> print(text_report(derive_formulas(load_model("models/rv40e.yaml"))))  # doctest: +SKIP
+    >>> print(text_report(derive_formulas(load_model("models/rv40e_wang2021.yaml"))))  # doctest: +SKIP
     RV-40E — closed-form ratio and efficiency
     ...
     """

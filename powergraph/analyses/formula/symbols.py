@@ -112,7 +112,7 @@ def build_symbols(model: Model, elements: tuple[Element, ...],
     --------
     >>> from powergraph.model import load_model
     >>> from powergraph.kinematics import elements_of
-    >>> m = load_model("models/rv40e.yaml")                      # doctest: +SKIP
+    >>> m = load_model("models/rv40e_wang2021.yaml")                      # doctest: +SKIP
     >>> sorted(build_symbols(m, elements_of(m)).info)            # doctest: +SKIP
     ['eta_0', 'eta_1', 'z_1', 'z_2', 'z_4', 'z_5']
     """

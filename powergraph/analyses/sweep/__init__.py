@@ -10,7 +10,7 @@ Examples
 >>> import numpy as np
 >>> from powergraph.model import load_model
 >>> from powergraph.analyses.sweep import compile_sweep
->>> evaluate = compile_sweep(load_model("models/rv40e.yaml"), ["links.1.efficiency"])
+>>> evaluate = compile_sweep(load_model("models/rv40e_wang2021.yaml"), ["links.1.efficiency"])
 >>> r = evaluate({"links.1.efficiency": np.linspace(0.94, 1.0, 4)})
 >>> np.round(r.efficiency, 4).tolist()
 [0.2874, 0.3724, 0.532, 0.9405]

@@ -125,7 +125,7 @@ class CompiledSweep:
     --------
     >>> import numpy as np
     >>> from powergraph.model import load_model
-    >>> rv = load_model("models/rv40e.yaml")
+    >>> rv = load_model("models/rv40e_wang2021.yaml")
     >>> evaluate = CompiledSweep(rv, ["links.1.efficiency"])
     >>> result = evaluate({"links.1.efficiency": np.array([0.94, 0.998])})
     >>> np.round(result.efficiency, 6).tolist()
@@ -448,7 +448,7 @@ def refuse_loss_blocks(model: Model, what: str) -> None:
     efficiencies passes a model without them.
 
     >>> from powergraph.model import load_model
-    >>> m = load_model("models/rv40e_friction.yaml")
+    >>> m = load_model("models/rv40e.yaml")
     >>> refuse_loss_blocks(m, "the compiled sweep")   # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -469,7 +469,7 @@ def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> 
     --------
     >>> import numpy as np
     >>> from powergraph.model import load_model
-    >>> evaluate = compile_sweep(load_model("models/rv40e.yaml"),
+    >>> evaluate = compile_sweep(load_model("models/rv40e_wang2021.yaml"),
     ...                          ["components.1.teeth", "links.*.efficiency"])
     >>> r = evaluate({"components.1.teeth": 12, "links.*.efficiency": [0.94, 0.99]})
     >>> np.round(r.ratio, 9).tolist(), np.round(r.efficiency, 6).tolist()

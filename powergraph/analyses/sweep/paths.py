@@ -174,7 +174,7 @@ def parse_set(model: Model, text: str) -> tuple[str, np.ndarray]:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> rv = load_model("models/rv40e.yaml")
+    >>> rv = load_model("models/rv40e_wang2021.yaml")
     >>> parse_set(rv, "components.5.teeth=38:42:5")[1].tolist()
     [38.0, 39.0, 40.0, 41.0, 42.0]
     >>> parse_set(rv, "links.1.efficiency=0.9,0.95,1")[1].tolist()

@@ -9,6 +9,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from powergraph.format import csv_header
+from powergraph.statics.ports import flow_efficiency_of_roles
 
 #: Status codes of a variant (``SweepResult.status``), by value.
 STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
@@ -16,11 +17,11 @@ OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED = range(6)
 #: Columns after the PATHs in the CSV; ``extra=True`` adds the rest.
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
-                 "status")
+                 "status", "formal_efficiency")
 #: Unit of each CSV column in its header (``efficiency [-]``); flags and statuses have none.
 COLUMN_UNITS = {"ratio": "-", "efficiency": "-", "input_power": "W", "output_power": "W",
                 "total_loss": "W", "teeth": "-", "speed": "rad/s", "power": "W",
-                "torque": "N*m"}
+                "torque": "N*m", "formal_efficiency": "-"}
 
 
 @dataclass(frozen=True)
@@ -39,7 +40,11 @@ class SweepResult:
         Input speed / output speed (NaN without one input and one output, or where the
         speeds are not determined).
     efficiency : ndarray
-        Output power / input power by the virtual-power method; NaN where not converged.
+        Power leaving at the ports / power entering at the ports, by the virtual-power
+        method, as ``solve`` reports it (:attr:`PowerFlowResult.efficiency`): 0 where the
+        train self-locks, below 1 when it runs back-driven; NaN where not converged or no
+        power passes. Read from the declared input and output powers, so with several
+        ports of one role it assumes they all pass power the same way.
     input_power, output_power, total_loss : ndarray
         W.
     losses : Mapping[int, ndarray]
@@ -47,7 +52,8 @@ class SweepResult:
     drivers : Mapping[int, ndarray]
         Who drives each element in its carrier's frame: +1 gear a, -1 gear b, 0 nothing.
     self_locking : ndarray of bool
-        ``efficiency <= 0``: the input cannot drive the output (False where not converged).
+        ``formal_efficiency <= 0``: the input cannot drive the output (False where not
+        converged).
     converged : ndarray of bool
         The variant was solved (``ok`` or ``locked``): its directions are decided and its
         speeds and loads are determined. Where False, ``status`` says why and the powers are NaN.
@@ -88,13 +94,23 @@ class SweepResult:
             {link: shaped(rows[k]) for k, link in enumerate(links)})
         return cls(name=name, parameters=MappingProxyType(
                        {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
-                   ratio=shaped(outputs.ratio), efficiency=shaped(outputs.efficiency),
+                   ratio=shaped(outputs.ratio),
+                   efficiency=shaped(flow_efficiency_of_roles(outputs.input_power,
+                                                              outputs.output_power)),
                    input_power=shaped(outputs.input_power),
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
                    converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)), status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
+
+    @property
+    def formal_efficiency(self) -> np.ndarray:
+        """Output power / input power by the declared roles (``PowerFlowResult.
+        formal_efficiency``): negative where the train self-locks, the papers' figure."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.input_power != 0, self.output_power / self.input_power,
+                            np.nan)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -134,7 +150,7 @@ class SweepResult:
         --------
         >>> from powergraph.model import load_model
         >>> from powergraph.analyses.sweep import sweep
-        >>> r = sweep(load_model("models/rv40e.yaml"), {"links.0.efficiency": [[0.9], [1.0]],
+        >>> r = sweep(load_model("models/rv40e_wang2021.yaml"), {"links.0.efficiency": [[0.9], [1.0]],
         ...                                            "links.1.efficiency": [0.99, 1.0]})
         >>> path, curves = r.curves()
         >>> path, sorted(curves)
@@ -219,6 +235,7 @@ class SweepResult:
         return {"name": self.name, "backend": self.backend, "shape": list(self.shape),
                 "parameters": {p: flat(v) for p, v in self.parameters.items()},
                 "ratio": flat(self.ratio), "efficiency": flat(self.efficiency),
+                "formal_efficiency": flat(self.formal_efficiency),
                 "input_power": flat(self.input_power), "output_power": flat(self.output_power),
                 "total_loss": flat(self.total_loss),
                 "losses": {str(k): flat(v) for k, v in self.losses.items()},

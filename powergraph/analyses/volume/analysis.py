@@ -46,7 +46,7 @@ def model_volume(model: Model) -> VolumeResult | None:
     Examples
     --------
     >>> from powergraph.model import load_model
-    >>> model_volume(load_model("models/rv40e.yaml")).total_mm3 > 0   # doctest: +SKIP
+    >>> model_volume(load_model("models/rv40e_wang2021.yaml")).total_mm3 > 0   # doctest: +SKIP
     True
     """
     parts = {cid: component_volume(model, c) for cid, c in model.components.items()

@@ -27,7 +27,7 @@ Examples
 --------
 >>> import powergraph as pg
 >>> from powergraph.plot.layout.view import flow_view
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))            # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))            # doctest: +SKIP
 >>> layout = layout_flow(flow_view(result))                           # doctest: +SKIP
 >>> layout.nodes["motor"].x < layout.nodes["2/3"].x < layout.nodes["generator"].x  # doctest: +SKIP
 True

@@ -7,7 +7,7 @@ Examples
 >>> import powergraph as pg
 >>> from powergraph.plot.layout.view import flow_view
 >>> from powergraph.plot.layout.layout import skeleton_of
->>> view = flow_view(pg.solve(pg.load_model("models/rv40e.yaml")))   # doctest: +SKIP
+>>> view = flow_view(pg.solve(pg.load_model("models/rv40e_wang2021.yaml")))   # doctest: +SKIP
 >>> place(view, skeleton_of(view)).clean                              # doctest: +SKIP
 True
 """

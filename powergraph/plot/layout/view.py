@@ -9,7 +9,7 @@ its flows as ``[{from, to, power}]`` in ``to_dict()["flows"]`` (``--method wang2
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))      # doctest: +SKIP
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))      # doctest: +SKIP
 >>> view = flow_view(result, frame="3")                         # doctest: +SKIP
 >>> view.title                                                  # doctest: +SKIP
 'RV-40E: virtual powers seen from 2/3 (held as the frame)'
