@@ -33,9 +33,9 @@ def power_split(load_on_mg1: bool = False) -> pg.Model:
                   {"type": "mesh", "between": ["p", "r"], "carrier": "c",
                    "efficiency": ETA_PR}],
         "ports": [{"component": "c", "role": "input", "name": "engine",
-                   "speed": W_C, "torque": T_C},
+                   "speed": f"{W_C!r} rad/s", "torque": T_C},
                   {"component": "s", "role": "output", "name": "MG1"},
-                  {"component": "r", "role": "output", "name": "wheels", "speed": W_R}]})
+                  {"component": "r", "role": "output", "name": "wheels", "speed": f"{W_R!r} rad/s"}]})
 
 
 def test_power_split_mg1_motors_and_the_efficiency_comes_from_the_flows() -> None:
@@ -91,7 +91,7 @@ def internal_pair(output_torque: float) -> pg.Model:
         "components": {0: {"role": "frame"}, 1: {"name": "pinion", "teeth": 20},
                        2: {"name": "ring", "teeth": 60, "internal": True}},
         "links": [{"type": "mesh", "between": [1, 2]}],
-        "ports": [{"component": 1, "role": "input", "name": "motor", "speed": 30.0},
+        "ports": [{"component": 1, "role": "input", "name": "motor", "speed": "30 rad/s"},
                   {"component": 2, "role": "output", "name": "drum",
                    "torque": output_torque}]})
 

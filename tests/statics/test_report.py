@@ -25,7 +25,7 @@ def named_pair(names: tuple[str, str], port_names: tuple[str, str],
                        1: {"name": names[0], "teeth": teeth[0]},
                        2: {"name": names[1], "teeth": teeth[1], "internal": internal}},
         "links": [{"type": "mesh", "between": [1, 2]}],
-        "ports": [{"component": 1, "role": "input", "name": port_names[0], "speed": 30.0,
+        "ports": [{"component": 1, "role": "input", "name": port_names[0], "speed": "30 rad/s",
                    "power": power},
                   {"component": 2, "role": "output", "name": port_names[1]}]})
 
@@ -87,7 +87,7 @@ def test_a_step_up_prints_one_to_n_and_a_reduction_n_to_one() -> None:
                                                                       "internal": True},
                                        "pinion": {"teeth": 10}},
         "links": [{"type": "mesh", "between": ["ring", "pinion"]}],
-        "ports": [{"component": "ring", "role": "input", "speed": 1.5, "power": 2e6},
+        "ports": [{"component": "ring", "role": "input", "speed": "1.5 rad/s", "power": 2e6},
                   {"component": "pinion", "role": "output"}]})
     result = pg.solve(up)
     assert_conservation(result)

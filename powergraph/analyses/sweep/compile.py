@@ -221,7 +221,7 @@ class CompiledSweep:
         Examples
         --------
         >>> from powergraph.model import load_model
-        >>> rv = load_model("models/rv40e.yaml")
+        >>> rv = load_model("models/rv40e_wang2021.yaml")
         >>> compile_sweep(rv, ["links.1.efficiency"]).variant(
         ...     {"links.1.efficiency": [0.9, 0.95]}, 1).links[1].efficiency
         0.95

@@ -95,13 +95,15 @@ class SweepResult:
         return cls(name=name, parameters=MappingProxyType(
                        {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
                    ratio=shaped(outputs.ratio),
-                   efficiency=shaped(flow_efficiency_of_roles(outputs.input_power,
-                                                              outputs.output_power)),
+                   efficiency=shaped(np.where(  # a locked train stays at rest: 0, as solve
+                       outputs.status == LOCKED, 0.0,
+                       flow_efficiency_of_roles(outputs.input_power, outputs.output_power))),
                    input_power=shaped(outputs.input_power),
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
-                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)), status=shaped(outputs.status),
+                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)),
+                   status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
 
     @property
@@ -109,8 +111,9 @@ class SweepResult:
         """Output power / input power by the declared roles (``PowerFlowResult.
         formal_efficiency``): negative where the train self-locks, the papers' figure."""
         with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(self.input_power != 0, self.output_power / self.input_power,
-                            np.nan)
+            formal = np.where(self.input_power != 0, self.output_power / self.input_power,
+                              np.nan)
+        return np.where(self.status == LOCKED, 0.0, formal)
 
     @property
     def shape(self) -> tuple[int, ...]:
