@@ -25,7 +25,7 @@ from powergraph.plot.layout.place import _project
 from powergraph.plot.layout.view import flow_view, format_power, format_share, loop_edges
 from powergraph.errors import UsageError
 from powergraph.model import loads_model
-from powergraph.statics.flow import Flow
+from powergraph.statics.flow import Flow, Node
 
 ROOT = Path(__file__).resolve().parents[2]
 MODEL_FILES = sorted((ROOT / "models").glob("*.yaml"))
@@ -66,7 +66,7 @@ def test_view_is_the_results_flow_graph(rv40e, solve_ok, frame) -> None:
     graph = result.flow_graph(frame)
     assert set(view.kinds) >= set(graph.nodes)
     for node, kind in graph.nodes(data="kind"):
-        if node == view.held:
+        if node.name == view.held:
             assert view.kinds[node] == "frame"
         else:
             assert view.kinds[node] == ("body" if kind == "frame" else kind)
@@ -102,7 +102,9 @@ def test_labels_give_power_and_share(rv40e, solve_ok) -> None:
 def test_loop_edges_are_the_cycles() -> None:
     flows = [Flow("a", "b", 5.0), Flow("b", "c", 3.0), Flow("c", "a", 2.0),
              Flow("c", "d", 1.0), Flow("d", "e", 0.0), Flow("e", "d", 0.0)]
-    assert loop_edges(flows) == {("a", "b"), ("b", "c"), ("c", "a")}
+    body = {name: Node("body", name) for name in "abc"}
+    assert loop_edges(flows) == {(body["a"], body["b"]), (body["b"], body["c"]),
+                                 (body["c"], body["a"])}
 
 
 def test_closed_differential_circulates(solve_ok) -> None:
@@ -110,8 +112,8 @@ def test_closed_differential_circulates(solve_ok) -> None:
     view = flow_view(result)
     assert result.circulating_power > 0
     assert view.circulating == pytest.approx(result.circulating_power)
-    assert ("c/a", "mesh a-b") in view.loop_edges
-    assert ("motor", "s") not in view.loop_edges
+    assert (Node("body", "c/a"), Node("mesh", "mesh a-b")) in view.loop_edges
+    assert (Node("motor", "motor"), Node("body", "s")) not in view.loop_edges
 
 
 # --- geometry helpers ------------------------------------------------------------------
@@ -153,7 +155,7 @@ def test_place_label_refuses_when_everything_collides() -> None:
 # --- the layout follows the power ------------------------------------------------------
 def test_rv40e_actual_layers_in_flow_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e)))
-    x = {n: p.x for n, p in layout.nodes.items()}
+    x = {n.name: p.x for n, p in layout.nodes.items()}
     chain = ["motor", "1", "mesh 1-2", "2/3", "mesh 4-5", "4", "coupling 4-6", "6/7",
              "generator"]
     assert [x[n] for n in chain] == sorted(x[n] for n in chain)
@@ -162,7 +164,7 @@ def test_rv40e_actual_layers_in_flow_order(rv40e, solve_ok) -> None:
 
 def test_frame_7_keeps_idle_members_in_their_actual_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e), "7"))
-    x = {n: p.x for n, p in layout.nodes.items()}
+    x = {n.name: p.x for n, p in layout.nodes.items()}
     assert x["4"] < x["coupling 4-6"] < x["6/7"]      # all three carry 0 W in this view
 
 
@@ -184,7 +186,7 @@ def test_closed_differential_loop_drawn_backwards_at_its_weakest(solve_ok, frame
         backwards = [e for e in loop if e.vertices[0][0] > e.vertices[-1][0]]
         assert len(backwards) == 1
         assert backwards[0].flow.power == min(e.flow.power for e in loop)
-        assert backwards[0].key == ("mesh p-r", "c/a")
+        assert backwards[0].key == (Node("mesh", "mesh p-r"), Node("body", "c/a"))
 
 
 def check_layout(view, layout) -> None:
