@@ -123,11 +123,17 @@ def test_elements_with_the_same_name_stay_two_nodes() -> None:
 
 
 def test_split_powers_are_keyed_by_node() -> None:
-    # ground frame: the sun's mesh node feeds the planet and the carrier
+    # Ground frame (docs/theory.md, section 7): the sun-planet mesh splits the 1000 W fed
+    # by the sun into 490 W to the planets and 495 W to the carrier (15 W lost). By hand,
+    # with w_c = w_s/4 and z_p = z_s: w_p - w_c = -(w_s - w_c) = -0.75 w_s, w_p = -0.5 w_s.
+    # The mesh hands the planet 735 W in the carrier's frame, so its torque on the planet
+    # is T_p = 735/(w_p - w_c), and in the ground frame the planet gets T_p·w_p = 735·(0.5
+    # /0.75) = 490 W; the element balances (1000 in = 490 + carrier + 15), carrier 495 W.
     result = solve(rename(PLAIN, {"planet": "mesh sun-planet"}))
     split = result.split_powers()
     mesh = Node("mesh", "mesh sun-mesh sun-planet")
-    assert set(split[mesh]) == {Node("body", "mesh sun-planet"), Node("body", "carrier")}
+    assert split[mesh] == pytest.approx({Node("body", "mesh sun-planet"): 490.0,
+                                         Node("body", "carrier"): 495.0}, rel=1e-12)
     assert body_node(result, "frame/ring") == Node("frame", "frame/ring")
 
 
