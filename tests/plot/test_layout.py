@@ -20,11 +20,11 @@ import pytest
 import powergraph as pg
 from powergraph.plot.layout.geometry import (CURVE4, Box, bezier_chain, head_polygon,
                                                place_label, sample, trim_end)
-from powergraph.plot.layout.layout import layout_flow, skeleton_of
+from powergraph.plot.layout.layout import LOSS_STUB, layout_flow, skeleton_of
 from powergraph.plot.layout.place import _project
 from powergraph.plot.layout.view import flow_view, format_power, format_share, loop_edges
 from powergraph.errors import UsageError
-from powergraph.model import loads_model
+from powergraph.model import loads_model, model_from_dict
 from powergraph.statics.flow import Flow, Node
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -195,8 +195,8 @@ def check_layout(view, layout) -> None:
     # one route per flow, in order, from source to target
     assert [e.flow for e in layout.edges] == list(view.flows)
     for edge in layout.edges:
-        source = nodes[edge.flow.source]
-        target = nodes[f"loss@{edge.flow.source}" if edge.loss else edge.flow.target]
+        source = nodes[edge.flow.source_node]
+        target = nodes[_stub(edge) if edge.loss else edge.flow.target_node]
         assert _touches(source.box, edge.vertices[0]), edge.key
         assert _touches(target.box, edge.vertices[-1]), edge.key
     # motor leftmost, generator rightmost
@@ -208,10 +208,10 @@ def check_layout(view, layout) -> None:
             assert node.x == max(xs), name
     # arrows that carry power point right, except on a loop or at a port fed backwards
     for edge in layout.edges:
-        kinds = {view.kinds[edge.flow.source], view.kinds.get(edge.flow.target)}
+        kinds = {view.kinds[edge.flow.source_node], view.kinds.get(edge.flow.target_node)}
         if edge.zero or edge.loss or edge.loop or kinds & {"motor", "generator"}:
             continue
-        assert nodes[edge.flow.source].x < nodes[edge.flow.target].x, edge.key
+        assert nodes[edge.flow.source_node].x < nodes[edge.flow.target_node].x, edge.key
     # widths proportional to power above the floor; 0 W links thin
     ratios = [e.width / e.flow.power for e in layout.edges
               if not e.zero and e.width > style.min_width]
@@ -219,7 +219,7 @@ def check_layout(view, layout) -> None:
     assert all(e.width == style.zero_width for e in layout.edges if e.zero)
     # loss sinks straight under their element
     for edge in (e for e in layout.edges if e.loss):
-        owner, sink = nodes[edge.flow.source], nodes[f"loss@{edge.flow.source}"]
+        owner, sink = nodes[edge.flow.source_node], nodes[_stub(edge)]
         assert sink.x == owner.x and sink.y < owner.y
     # labels: placed, clear of every node and of each other
     assert layout.clean
@@ -232,6 +232,11 @@ def check_layout(view, layout) -> None:
     # nodes do not overlap each other
     for a, b in itertools.combinations(boxes, 2):
         assert not a.overlaps(b)
+
+
+def _stub(edge) -> Node:
+    """The loss sink drawn under the element of a loss arrow."""
+    return Node(LOSS_STUB, f"loss@{edge.flow.source}")
 
 
 def _touches(box: Box, point, tol: float = 1.0) -> bool:
@@ -273,3 +278,30 @@ def test_same_layout_in_other_processes() -> None:
                              capture_output=True, text=True).stdout
         digests.add(out.strip())
     assert len(digests) == 1
+
+
+def test_ids_that_spell_layout_helpers_stay_nodes_of_their_own(solve_ok) -> None:
+    # The loss sink under mesh "mesh s-planet" and the waypoints of long arrows are
+    # layout nodes of their own kinds: a carrier called "loss@mesh s-planet" (once taken
+    # for that sink, and drawn as a loss) and a ring called "·0·1" stay bodies.
+    import yaml
+
+    data = yaml.safe_load((ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text())
+    new = {"sun": "s", "carrier": "loss@mesh s-planet", "ring": "·0·1"}
+    get = lambda c: new.get(c, c)  # noqa: E731
+    data["components"] = {get(c): v for c, v in data["components"].items()}
+    for link in data["links"]:
+        link.update(between=[get(c) for c in link["between"]],
+                    **({"carrier": get(link["carrier"])} if "carrier" in link else {}))
+    for port in data["ports"]:
+        port["component"] = get(port["component"])
+    result = solve_ok(model_from_dict(data))
+    view = flow_view(result)
+    layout = layout_flow(view)
+    flow_nodes = {n for f in view.flows for n in f.key if n.kind != "loss"}
+    stubs = [f for f in view.flows if f.target_kind == "loss"]
+    assert len(layout.nodes) == len(flow_nodes) + len(stubs) == 8 + 2
+    carrier = layout.nodes[Node("body", "loss@mesh s-planet")]
+    assert carrier.kind == "body" and carrier.shape.text == "loss@mesh s-planet"
+    assert layout.nodes[Node("frame", "frame/·0·1")].kind == "frame"
+    check_layout(view, layout)

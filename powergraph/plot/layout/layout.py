@@ -32,10 +32,9 @@ Examples
 >>> layout.nodes["motor"].x < layout.nodes["2/3"].x < layout.nodes["generator"].x  # doctest: +SKIP
 True
 
-Nodes are :class:`~powergraph.statics.flow.Node` (kind and name), so a body called
-``motor`` or ``loss`` is laid out as a body; the waypoints of long arrows are nodes of
-kind ``waypoint`` and the loss sinks drawn under elements of kind ``loss stub``, which no
-node of the flow graph has. ``layout.nodes`` answers to a node's name as well (``NodeMap``).
+Nodes are flow-graph :class:`~powergraph.statics.flow.Node` s (kind and name); waypoints
+and the loss sinks under elements are nodes of kinds no flow-graph node has (``waypoint``,
+``loss stub``). ``layout.nodes`` also answers to an unambiguous name (``NodeMap``).
 """
 from __future__ import annotations
 
