@@ -305,3 +305,19 @@ def test_ids_that_spell_layout_helpers_stay_nodes_of_their_own(solve_ok) -> None
     assert carrier.kind == "body" and carrier.shape.text == "loss@mesh s-planet"
     assert layout.nodes[Node("frame", "frame/·0·1")].kind == "frame"
     check_layout(view, layout)
+
+
+def test_a_very_long_id_does_not_widen_the_diagram(solve_ok) -> None:
+    # a 400-character id is cut to MAX_NAME characters in its box and its mesh circle:
+    # the diagram stays about as wide as with short ids (it was ~5300 pt wide)
+    import yaml
+
+    data = yaml.safe_load((ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text())
+    data["components"]["S" * 400] = data["components"].pop("sun")
+    data["links"][0]["between"][0] = data["ports"][0]["component"] = "S" * 400
+    plain = layout_flow(flow_view(solve_ok(loads_model(
+        (ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text()))))
+    long = layout_flow(flow_view(solve_ok(model_from_dict(data))))
+    width = lambda layout: layout.bounds.x1 - layout.bounds.x0  # noqa: E731
+    assert width(long) < 2 * width(plain)
+    assert long.nodes[Node("body", "S" * 400)].shape.text == "S" * 39 + "…"
