@@ -64,7 +64,7 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
     scale = _scale(result) + sum(abs(e.carrier_frame_power) for e in result.elements)
     sources = (MOTOR, GENERATOR, LOSS, GROUND)
     for node in graph.nodes:
-        if node.split(" ")[0] in sources:
+        if node.kind in sources:
             continue
         inflow = sum(d["power"] for _, _, d in graph.in_edges(node, data=True))
         outflow = sum(d["power"] for _, _, d in graph.out_edges(node, data=True))
@@ -73,12 +73,12 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
         # sets the tolerance, never below the train's scale
         _close(inflow, outflow, max(scale, inflow + outflow), rtol,
                f"flow balance at {node!r} (frame {frame})")
-    fed = sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (MOTOR, GROUND)) \
-        - sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (MOTOR, GROUND))
-    taken = sum(d["power"] for _, v, d in graph.edges(data=True) if v.split(" ")[0] in (GENERATOR, LOSS)) \
-        - sum(d["power"] for u, _, d in graph.edges(data=True) if u.split(" ")[0] in (GENERATOR, LOSS))
-    moved = sum(d["power"] for u, v, d in graph.edges(data=True)
-                if u.split(" ")[0] in sources or v.split(" ")[0] in sources)
+    edges = list(graph.edges(data="power"))
+    fed = sum(p for u, _, p in edges if u.kind in (MOTOR, GROUND)) \
+        - sum(p for _, v, p in edges if v.kind in (MOTOR, GROUND))
+    taken = sum(p for _, v, p in edges if v.kind in (GENERATOR, LOSS)) \
+        - sum(p for u, _, p in edges if u.kind in (GENERATOR, LOSS))
+    moved = sum(p for u, v, p in edges if u.kind in sources or v.kind in sources)
     _close(fed, taken, max(scale, moved), rtol, f"sources vs sinks (frame {frame})")
 
 

@@ -2,13 +2,15 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import os
 import sys
 import tempfile
+import warnings
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Iterator
 
 from powergraph.errors import UsageError
 from powergraph.result import aligned_table  # noqa: F401  (used by the commands)
@@ -124,8 +126,13 @@ def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
     The command line only writes files, so it needs no interactive backend and chooses
     none: ``Figure.savefig`` picks the writer from the file's suffix.
     """
+    import matplotlib
     from matplotlib.figure import Figure
 
+    from powergraph.plot.fonts import font_families
+
+    # the command line is the application: its figures draw names in any script
+    matplotlib.rcParams["font.family"] = list(font_families())
     return Figure(figsize=figsize)
 
 
@@ -135,8 +142,47 @@ def new_axes(figsize: tuple[float, float] = (6.4, 4.8), projection: str | None =
 
 
 def save_figure(figure, target: str | Path, **savefig: Any) -> None:
-    """Write ``figure`` to ``target`` atomically (``savefig`` keywords passed on)."""
-    write_atomically(target, lambda tmp: figure.savefig(tmp, **savefig))
+    """Write ``figure`` to ``target`` atomically (``savefig`` keywords passed on).
+
+    matplotlib's warnings per missing glyph are silenced; the lines of text that cannot
+    be drawn give one :class:`~powergraph.plot.fonts.GlyphWarning` instead (unless the
+    plot already checked its names: a power-flow diagram), which :func:`glyph_notices`
+    prints as one line.
+    """
+    from matplotlib.text import Text
+
+    from powergraph.plot.fonts import quiet_glyphs, warn_undrawable
+
+    if not any(hasattr(ax, "powergraph_undrawable") for ax in figure.axes):
+        warn_undrawable([line for text in figure.findobj(Text)
+                         for line in text.get_text().splitlines()])
+    with quiet_glyphs():
+        write_atomically(target, lambda tmp: figure.savefig(tmp, **savefig))
+
+
+@contextlib.contextmanager
+def glyph_notices() -> Iterator[None]:
+    """Collect the :class:`~powergraph.plot.fonts.GlyphWarning` of a command and print
+    them, merged, as one line on stderr at its end; other warnings pass through."""
+    names: list[str] = []
+    shown = warnings.showwarning
+
+    def show(message, category, *args, **kwargs):
+        if getattr(category, "__name__", "") == "GlyphWarning" and hasattr(message, "names"):
+            names.extend(n for n in message.names if n not in names)
+        else:
+            shown(message, category, *args, **kwargs)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        warnings.filterwarnings("always", message="no installed font can draw")
+        try:
+            yield
+        finally:
+            if names:
+                from powergraph.plot.fonts import glyph_notice
+
+                print(f"powergraph: warning: {glyph_notice(names)}", file=sys.stderr)
 
 
 def add_cluster_arguments(parser: Any) -> None:

@@ -86,9 +86,10 @@ def main(argv: list[str] | None = None) -> int:
 
 def _run(args: argparse.Namespace) -> int:
     """Run the command with the model size limit set and numpy warnings turned into errors."""
+    from powergraph.cli.common import glyph_notices
     from powergraph.model.yaml_loader import size_limit
 
-    with size_limit(args.max_model_size), warnings.catch_warnings():
+    with size_limit(args.max_model_size), warnings.catch_warnings(), glyph_notices():
         warnings.simplefilter("error", RuntimeWarning)
         return args.handler(args)
 

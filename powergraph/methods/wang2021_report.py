@@ -21,7 +21,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from powergraph.methods.tuning import lossless_cycloid_power
-from powergraph.statics.flow import GENERATOR, MOTOR, Flow
+from powergraph.statics.flow import BODY, GENERATOR, MOTOR, Flow
 from powergraph.units_si import RPM_PER_RAD_S
 
 if TYPE_CHECKING:
@@ -47,13 +47,18 @@ def split_flows(result: "Wang2021Result") -> list[Flow]:
     model = result.model
     first, cycloid, coupling = (_node(result, i) for i in
                                 (roles.first_mesh, roles.cycloid_mesh, roles.coupling))
+    first_k, cycloid_k, coupling_k = (model.links[i].type for i in
+                                      (roles.first_mesh, roles.cycloid_mesh, roles.coupling))
     input_body = model.body_of[roles.input_gear]
     cycloid_body = model.body_of[roles.cycloid]
-    return [Flow(MOTOR, input_body, p), Flow(input_body, first, p),
-            Flow(first, roles.planet_body, p), Flow(roles.planet_body, roles.output_body, v),
-            Flow(roles.planet_body, cycloid, p - v), Flow(cycloid, cycloid_body, p - v),
-            Flow(cycloid_body, coupling, p - v), Flow(coupling, roles.output_body, p - v),
-            Flow(roles.output_body, GENERATOR, p)]
+    planet, output = roles.planet_body, roles.output_body
+    return [Flow(MOTOR, input_body, p, MOTOR, BODY), Flow(input_body, first, p, BODY, first_k),
+            Flow(first, planet, p, first_k, BODY), Flow(planet, output, v),
+            Flow(planet, cycloid, p - v, BODY, cycloid_k),
+            Flow(cycloid, cycloid_body, p - v, cycloid_k, BODY),
+            Flow(cycloid_body, coupling, p - v, BODY, coupling_k),
+            Flow(coupling, output, p - v, coupling_k, BODY),
+            Flow(output, GENERATOR, p, BODY, GENERATOR)]
 
 
 def _meshes(result: "Wang2021Result") -> list[dict[str, Any]]:

@@ -9,7 +9,7 @@ Examples
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Mapping
+from typing import TYPE_CHECKING, Collection, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.spec import Body, Component, Link, Model
@@ -22,8 +22,10 @@ def bodies_of(components: Mapping[str, Component],
               links: tuple[Link, ...]) -> tuple[tuple[Body, ...], dict[str, str]]:
     """Contract ``fixed`` links: each connected set of components is one body.
 
-    Bodies are listed by the file order of their first component, and named by their
-    members joined with ``/`` in file order (the paper's "2/3").
+    Bodies are listed by the file order of their first component. A body of one
+    component is named by that component's id; a body of several by their ids joined
+    with ``/`` in file order (the paper's "2/3"), made unique by :func:`unique_name` when
+    that name is already a component's id or another body's (``F/R #2``).
     """
     # A small union-find rather than networkx here: `powergraph solve` must start fast and
     # networkx costs ~0.2 s to import; the full graph view is `to_networkx` below.
@@ -41,13 +43,30 @@ def bodies_of(components: Mapping[str, Component],
     grouped: dict[str, list[str]] = {}
     for cid in components:  # file order, so members and bodies come out in file order
         grouped.setdefault(root(cid), []).append(cid)
-    groups = list(grouped.values())
-    bodies = tuple(Body(id="/".join(str(components[c].raw_id) for c in group),
-                        members=tuple(group),
-                        is_frame=any(components[c].is_frame for c in group))
-                   for group in groups)
+    taken = set(components)
+    bodies = []
+    for group in grouped.values():
+        name = group[0]
+        if len(group) > 1:
+            name = unique_name("/".join(group), taken)
+            taken.add(name)
+        bodies.append(Body(id=name, members=tuple(group),
+                           is_frame=any(components[c].is_frame for c in group)))
+    bodies = tuple(bodies)
     body_of = {cid: body.id for body in bodies for cid in body.members}
     return bodies, body_of
+
+
+def unique_name(candidate: str, taken: Collection[str]) -> str:
+    """``candidate``, or ``candidate #2``, ``#3``... : the first not in ``taken``.
+
+    >>> unique_name("F/R", {"F", "R", "F/R"})
+    'F/R #2'
+    """
+    name, number = candidate, 2
+    while name in taken:
+        name, number = f"{candidate} #{number}", number + 1
+    return name
 
 
 def check_topology(model: Model) -> None:

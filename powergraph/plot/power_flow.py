@@ -23,6 +23,7 @@ Examples
 """
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import matplotlib.pyplot as plt
@@ -30,8 +31,10 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyBboxPatch, PathPatch, Polygon, Rectangle
 from matplotlib.path import Path
 
+from powergraph.plot.fonts import GlyphWarning, drawing_fonts, undrawable
 from powergraph.plot.layout.geometry import Box
 from powergraph.plot.layout.layout import FlowLayout, LayoutStyle, NodePlace, layout_flow
+from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.place import LABEL_PAD
 from powergraph.plot.layout.view import FlowView, flow_view, format_power, format_share
 
@@ -71,22 +74,45 @@ def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
         With ``ax.powergraph_artists = {(source, target): (arrow, label)}`` for every
         flow of the view (zero-power ones included), ``ax.powergraph_nodes =
         {node: (patch, text)}``, ``ax.powergraph_layout`` and ``ax.powergraph_view``.
+        Keys are :class:`~powergraph.statics.flow.Node` (``Flow.key`` for arrows); a
+        node's name may stand for it when no other node has that name
+        (:class:`~powergraph.plot.layout.nodes.NodeMap`). ``ax.powergraph_undrawable``
+        lists the names no installed font can draw (then one
+        :class:`~powergraph.plot.fonts.GlyphWarning` is issued; docs/draw.md).
     """
     view = view if view is not None else flow_view(result, frame)
     fig = ax.figure if ax is not None else figure if figure is not None else plt.figure()
+    with drawing_fonts():
+        ax = _draw(fig, ax, view, result, font_size, legend, subtitle)
+    ax.powergraph_undrawable = tuple(undrawable(_texts(ax.powergraph_layout)))
+    if ax.powergraph_undrawable:
+        warnings.warn(GlyphWarning(ax.powergraph_undrawable), stacklevel=2)
+    return ax
+
+
+def _texts(layout: FlowLayout) -> list[str]:
+    """The names drawn: every node's text or caption, the model's name, the held body."""
+    names = [layout.view.name] + ([layout.view.held] if layout.view.held else [])
+    return [n.name for n in layout.nodes.values() if n.kind != "loss"] + names
+
+
+def _draw(fig, ax, view: FlowView, result: Any, font_size: float, legend: bool,
+          subtitle: bool):
     style = LayoutStyle(font_size=font_size)
     layout = layout_flow(view, _measurer(fig), style)
     scale = _prepare_axes(fig, ax, layout, legend) if ax is not None else 1.0
     if ax is None:
         ax = _natural_axes(fig, layout, legend)
     ax.set_axis_off()
-    ax.powergraph_nodes = {n: _draw_node(ax, node, scale, style)
-                           for n, node in layout.nodes.items()}
-    ax.powergraph_heads = {}
-    ax.powergraph_artists = {e.key: _draw_edge(ax, e, scale, style) for e in layout.edges}
+    ax.powergraph_nodes = NodeMap({n: _draw_node(ax, node, scale, style)
+                                   for n, node in layout.nodes.items()})
+    heads: dict = {}
+    ax.powergraph_artists = NodeMap({e.key: _draw_edge(ax, e, scale, style, heads)
+                                     for e in layout.edges})
+    ax.powergraph_heads = NodeMap(heads)
     ax.powergraph_layout, ax.powergraph_view = layout, view
     ax.set_title(_title(view, result, subtitle), fontsize=font_size * 1.1 * scale,
-                 color=INK, linespacing=1.5)
+                 color=INK, linespacing=1.5, parse_math=False)
     if legend:
         _legend(ax, view, scale, font_size)
     return ax
@@ -103,7 +129,7 @@ def _measurer(fig):
 
     def size(text: str, font: float) -> tuple[float, float]:
         if (text, font) not in cache:
-            probe = fig.text(0, 0, text, fontsize=font)
+            probe = fig.text(0, 0, text, fontsize=font, parse_math=False)
             box = probe.get_window_extent()
             probe.remove()
             cache[(text, font)] = (box.width * INCH / fig.dpi, box.height * INCH / fig.dpi)
@@ -149,13 +175,14 @@ def _draw_node(ax, node: NodePlace, s: float, style: LayoutStyle):
     if node.shape.text:
         text = ax.text(node.x, node.y, node.shape.text, ha="center", va="center",
                        fontsize=font, color=COLOURS["loss"] if kind == "loss" else INK,
-                       zorder=5, style="italic" if kind == "loss" else "normal")
+                       zorder=5, style="italic" if kind == "loss" else "normal",
+                       parse_math=False)
         if kind == "frame":
             text.set_bbox(dict(boxstyle="round,pad=0.12", fc="white", ec="none"))
     elif node.shape.caption:
         cx, cy = node.caption_box.center
         text = ax.text(cx, cy, node.shape.caption, ha="center", va="center",
-                       fontsize=font * 0.9, color=INK, zorder=5)
+                       fontsize=font * 0.9, color=INK, zorder=5, parse_math=False)
     return patch, text
 
 
@@ -217,7 +244,7 @@ def _colour(edge) -> str:
     return COLOURS["loss"] if edge.loss else COLOURS["power"]
 
 
-def _draw_edge(ax, edge, s: float, style: LayoutStyle):
+def _draw_edge(ax, edge, s: float, style: LayoutStyle, heads: dict):
     """The arrow's line (returned) with its head (``ax.powergraph_heads``) and label."""
     colour = _colour(edge)
     arrow = PathPatch(Path(*edge.shaft), fill=False, lw=edge.width * s, ec=colour,
@@ -227,12 +254,12 @@ def _draw_edge(ax, edge, s: float, style: LayoutStyle):
     if edge.head is not None:
         head = Polygon(edge.head, closed=True, fc=colour, ec="none", zorder=3)
         ax.add_patch(head)
-        ax.powergraph_heads[edge.key] = head
+        heads[edge.key] = head
     font = style.label_size * s
     label = ax.text(*edge.label_xy, edge.label, ha="center", va="center", fontsize=font,
                     color=colour if not edge.zero else "#666666", zorder=6,
                     bbox=dict(boxstyle=f"round,pad={LABEL_PAD / style.label_size:.3f}",
-                              fc="white", ec="none", alpha=0.92))
+                              fc="white", ec="none", alpha=0.92), parse_math=False)
     return arrow, label
 
 
@@ -268,6 +295,8 @@ def _legend(ax, view, s: float, font_size: float) -> None:
                                               else f"frame {view.held}")))
     if view.loop_edges:
         handles.append(Line2D([], [], color=COLOURS["loop"], lw=2.5, label="circulating"))
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-              ncol=len(handles), frameon=False, fontsize=font_size * 0.85 * s,
-              handlelength=1.6, columnspacing=1.2, borderaxespad=0.3)
+    key = ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                    ncol=len(handles), frameon=False, fontsize=font_size * 0.85 * s,
+                    handlelength=1.6, columnspacing=1.2, borderaxespad=0.3)
+    for text in key.get_texts():    # a body's name is text, never mathtext
+        text.set_parse_math(False)

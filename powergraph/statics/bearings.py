@@ -55,6 +55,7 @@ from typing import Any, Mapping
 
 from powergraph.kinematics import element_stencil
 from powergraph.model.block_bearing import gear_radius, load_meshes
+from powergraph.model.graph import unique_name
 from powergraph.model.spec import Model
 from powergraph.statics.equilibrium import Loads, loads_of
 
@@ -108,16 +109,19 @@ def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
     The torques are those of this result's forces: the solver iterates until they agree
     with the torques the balance was solved with.
     """
-    states = []
+    states, names = [], set()
     for link in model.links:
         if link.type == "bearing" and link.blocks:
             carried, carrying = link.between
             count = max(model.components[c].count for c in link.between)
             load = _radial_load(model, result, carried) if "friction" in link.blocks else 0.0
+            # unique among the bearings (ids may contain "-"; two bearings may join a pair)
+            name = unique_name(f"bearing {model.raw_id(carried)}-{model.raw_id(carrying)}",
+                               names)
+            names.add(name)
             states.append(_state(model, result, "bearing", link.index, (carried, carrying),
                                  count, link.blocks.get("friction"), link.blocks.get("drag"),
-                                 load, f"bearing {model.raw_id(carried)}-"
-                                       f"{model.raw_id(carrying)}"))
+                                 load, name))
     for component in model.components.values():
         if component.drag is not None:
             states.append(_state(model, result, "drag", None, (component.id, model.frame),

@@ -7,17 +7,25 @@ only when the powers are seen from a moving body). The power from body X into el
 is ``-T_eX · (w_X - w_F)`` with F the observing body (docs/theory.md); losses are the same in
 every frame.
 
+A node is known by its kind *and* its name (:class:`Node`): a body whose id is ``motor``
+and the motor port are two nodes, whatever the component ids are. Names are unique within
+a kind (bodies: :func:`powergraph.model.graph.bodies_of`; elements, bearings: a ``#2``
+suffix on the rare clash).
+
 Examples
 --------
 >>> import powergraph as pg
 >>> r = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))                # doctest: +SKIP
->>> [f for f in r.flows() if f.source == "motor"]                   # doctest: +SKIP
-[Flow(source='motor', target='1', power=2270.0)]
+>>> [f for f in r.flows() if f.source_kind == "motor"]              # doctest: +SKIP
+[Flow(source='motor', target='1', power=2270.0, source_kind='motor', target_kind='body')]
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import total_ordering
 from typing import TYPE_CHECKING
+
+from powergraph.model.graph import unique_name
 
 if TYPE_CHECKING:
     import networkx as nx
@@ -25,36 +33,105 @@ if TYPE_CHECKING:
     from powergraph.statics.result import ElementFlow, PowerFlowResult
 
 MOTOR, GENERATOR, LOSS, GROUND = "motor", "generator", "loss", "ground"
+BODY, FRAME = "body", "frame"
+#: Every node kind of the flow graph.
+KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "drag", MOTOR, GENERATOR, LOSS, GROUND)
+
+
+@total_ordering
+@dataclass(frozen=True)
+class Node:
+    """A node of the flow graph: its ``kind`` (one of :data:`KINDS`) and its ``name``.
+
+    Two nodes are the same only when both agree, so no component id can be mistaken
+    for the tool's own nodes. Sorted by name, then kind; ``str(node)`` is the name.
+
+    >>> Node("body", "motor") == Node("motor", "motor"), str(Node("mesh", "mesh 1-2"))
+    (False, 'mesh 1-2')
+    """
+
+    kind: str
+    name: str
+
+    def __str__(self) -> str:
+        return self.name
+
+    def __lt__(self, other: "Node") -> bool:
+        if not isinstance(other, Node):
+            return NotImplemented
+        return (self.name, self.kind) < (other.name, other.kind)
 
 
 @dataclass(frozen=True)
 class Flow:
-    """One arrow of the flow graph: ``power`` W (>= 0) from ``source`` to ``target``."""
+    """One arrow of the flow graph: ``power`` W (>= 0) from ``source`` to ``target``.
+
+    ``source``/``target`` are the nodes' names as displayed, ``source_kind``/``target_kind``
+    their kinds (:data:`KINDS`); :attr:`source_node`/:attr:`target_node` the nodes.
+    """
 
     source: str
     target: str
     power: float
+    source_kind: str = BODY
+    target_kind: str = BODY
+
+    @property
+    def source_node(self) -> Node:
+        return Node(self.source_kind, self.source)
+
+    @property
+    def target_node(self) -> Node:
+        return Node(self.target_kind, self.target)
+
+    @property
+    def key(self) -> tuple[Node, Node]:
+        """``(source_node, target_node)``: the arrow's identity."""
+        return (self.source_node, self.target_node)
 
     def to_dict(self) -> dict:
-        return {"from": self.source, "to": self.target, "power": self.power}
+        return {"from": self.source, "to": self.target, "power": self.power,
+                "from_kind": self.source_kind, "to_kind": self.target_kind}
+
+
+def body_node(result: "PowerFlowResult", body: str) -> Node:
+    """The node of body ``body`` (kind ``frame`` for the housing)."""
+    return Node(FRAME if body == result.model.frame_body else BODY, body)
+
+
+def element_nodes(result: "PowerFlowResult") -> dict[int, Node]:
+    """Node of each element by link index: ``mesh 1-2`` or ``coupling 4-6`` (ids as in
+    the file), ``#2``... added when two elements of a kind would share a name."""
+    raw = result.model.raw_id
+    taken: dict[str, set[str]] = {}
+    nodes = {}
+    for element in result.elements:
+        names = taken.setdefault(element.kind, set())
+        name = unique_name(f"{element.kind} {raw(element.a)}-{raw(element.b)}", names)
+        names.add(name)
+        nodes[element.link] = Node(element.kind, name)
+    return nodes
 
 
 def element_node(result: "PowerFlowResult", element: "ElementFlow") -> str:
     """Node name of an element: ``mesh 1-2`` or ``coupling 4-6`` (ids as in the file)."""
-    raw = result.model.raw_id
-    return f"{element.kind} {raw(element.a)}-{raw(element.b)}"
+    return element_nodes(result)[element.link].name
 
 
-def port_node(result: "PowerFlowResult", component: str, role: str) -> str:
+def port_node(result: "PowerFlowResult", component: str, role: str) -> Node:
     """``motor``/``generator``, or ``motor 1`` when the train has several of that role."""
     base = MOTOR if role == "input" else GENERATOR
     ports = result.model.inputs if role == "input" else result.model.outputs
-    return base if len(ports) == 1 else f"{base} {result.model.raw_id(component)}"
+    return Node(base, base if len(ports) == 1 else f"{base} {result.model.raw_id(component)}")
 
 
-def _oriented(source: str, target: str, power: float) -> Flow:
+def _arrow(source: Node, target: Node, power: float) -> Flow:
+    return Flow(source.name, target.name, power, source.kind, target.kind)
+
+
+def _oriented(source: Node, target: Node, power: float) -> Flow:
     power = power + 0.0  # no -0.0 in reports
-    return Flow(source, target, power) if power >= 0 else Flow(target, source, -power)
+    return _arrow(source, target, power) if power >= 0 else _arrow(target, source, -power)
 
 
 def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow]:
@@ -66,49 +143,55 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
     kin, model = result.kinematics, result.model
     w_f = 0.0 if frame is None else kin.speed(str(frame))
     moving_view = frame is not None and model.body_of[str(frame)] != model.frame_body
+    loss = Node(LOSS, LOSS)
     edges: list[Flow] = []
     for port in model.ports:
         body = model.body_of[port.component]
         power = result.external_torques.get(body, 0.0) * (kin.body_speeds[body] - w_f)
-        node = port_node(result, port.component, port.role)
-        edges.append(_oriented(node, body, power) if port.role == "input"
-                     else _oriented(body, node, -power))
+        node, at = port_node(result, port.component, port.role), body_node(result, body)
+        edges.append(_oriented(node, at, power) if port.role == "input"
+                     else _oriented(at, node, -power))
     if moving_view:
         torque = result.external_torques[model.frame_body]
-        edges.append(_oriented(GROUND, model.frame_body, torque * (0.0 - w_f)))
+        edges.append(_oriented(Node(GROUND, GROUND), body_node(result, model.frame_body),
+                               torque * (0.0 - w_f)))
+    nodes = element_nodes(result)
     for element in result.elements:
-        node = element_node(result, element)
+        node = nodes[element.link]
         for body, torque in element.torques.items():
-            edges.append(_oriented(body, node, -torque * (kin.body_speeds[body] - w_f)))
+            edges.append(_oriented(body_node(result, body), node,
+                                   -torque * (kin.body_speeds[body] - w_f)))
         if element.loss > 0 or element.efficiency < 1:
-            edges.append(Flow(node, LOSS, element.loss))
+            edges.append(_arrow(node, loss, element.loss))
     for bearing in result.bearings:     # docs/losses.md: a torque pair opposing Δω
+        node = Node(bearing.kind, bearing.node)
         for body, torque in bearing.torques.items():
-            edges.append(_oriented(body, bearing.node, -torque * (kin.body_speeds[body] - w_f)))
-        edges.append(Flow(bearing.node, LOSS, bearing.loss))
+            edges.append(_oriented(body_node(result, body), node,
+                                   -torque * (kin.body_speeds[body] - w_f)))
+        edges.append(_arrow(node, loss, bearing.loss))
     return edges
 
 
 def flow_graph(result: "PowerFlowResult", frame: str | None = None) -> "nx.DiGraph":
-    """The flow edges as a networkx DiGraph with ``power`` on each edge and a ``kind`` on
-    each node (body, frame, mesh, coupling, bearing, drag, motor, generator, loss,
-    ground)."""
+    """The flow edges as a networkx DiGraph keyed by :class:`Node`, with ``power`` on each
+    edge and ``kind`` and ``name`` on each node (bodies carry ``members``, elements,
+    bearings and drags their ``link``)."""
     import networkx as nx
 
     graph = nx.DiGraph(frame=frame)
-    model = result.model
-    for body in model.bodies:
-        graph.add_node(body.id, kind="frame" if body.is_frame else "body",
-                       members=body.members)
-    for element in result.elements:
-        graph.add_node(element_node(result, element), kind=element.kind, link=element.link)
+    for body in result.model.bodies:
+        node = body_node(result, body.id)
+        graph.add_node(node, kind=node.kind, name=node.name, members=body.members)
+    for link, node in element_nodes(result).items():
+        graph.add_node(node, kind=node.kind, name=node.name, link=link)
     for bearing in result.bearings:
-        graph.add_node(bearing.node, kind=bearing.kind, link=bearing.link)
+        graph.add_node(Node(bearing.kind, bearing.node), kind=bearing.kind, name=bearing.node,
+                       link=bearing.link)
     for edge in flow_edges(result, frame):
-        for node in (edge.source, edge.target):
+        for node in edge.key:
             if node not in graph:
-                graph.add_node(node, kind=node.split(" ")[0])
-        graph.add_edge(edge.source, edge.target, power=edge.power)
+                graph.add_node(node, kind=node.kind, name=node.name)
+        graph.add_edge(*edge.key, power=edge.power)
     return graph
 
 
@@ -122,17 +205,18 @@ def circulating_power(edges: list[Flow], tolerance: float = 1e-9) -> float:
     2.0
     """
     largest = max((e.power for e in edges), default=0.0)
-    successors: dict[str, set[str]] = {}
+    successors: dict[Node, set[Node]] = {}
     for edge in sorted(edges, key=lambda e: -e.power):
         if edge.power <= tolerance * max(1.0, largest):
             break
-        if _reaches(successors, edge.target, edge.source):
+        source, target = edge.key
+        if _reaches(successors, target, source):
             return edge.power
-        successors.setdefault(edge.source, set()).add(edge.target)
+        successors.setdefault(source, set()).add(target)
     return 0.0
 
 
-def _reaches(successors: dict[str, set[str]], start: str, goal: str) -> bool:
+def _reaches(successors: dict[Node, set[Node]], start: Node, goal: Node) -> bool:
     """Depth-first search (kept here so a solve need not import networkx)."""
     seen, stack = {start}, [start]
     while stack:
@@ -146,11 +230,17 @@ def _reaches(successors: dict[str, set[str]], start: str, goal: str) -> bool:
     return False
 
 
-def split_powers(edges: list[Flow], tolerance: float = 1e-9) -> dict[str, dict[str, float]]:
-    """Nodes that send power into several others: ``{node: {target: power}}``."""
+def split_powers(edges: list[Flow], tolerance: float = 1e-9) -> dict[Node, dict[Node, float]]:
+    """Nodes that send power into several others: ``{node: {target: power}}`` (keys are
+    :class:`Node`; ``str(node)`` is its name).
+
+    >>> split = split_powers([Flow("a", "b", 5.0), Flow("a", "c", 2.0), Flow("b", "c", 9.0)])
+    >>> {str(n): {str(t): p for t, p in to.items()} for n, to in split.items()}
+    {'a': {'b': 5.0, 'c': 2.0}}
+    """
     largest = max((e.power for e in edges), default=0.0)
-    out: dict[str, dict[str, float]] = {}
+    out: dict[Node, dict[Node, float]] = {}
     for edge in edges:
-        if edge.power > tolerance * max(1.0, largest) and edge.target != LOSS:
-            out.setdefault(edge.source, {})[edge.target] = edge.power
+        if edge.power > tolerance * max(1.0, largest) and edge.target_kind != LOSS:
+            out.setdefault(edge.source_node, {})[edge.target_node] = edge.power
     return {node: targets for node, targets in out.items() if len(targets) > 1}

@@ -125,3 +125,66 @@ def test_help_lists_draw(capsys) -> None:
     with pytest.raises(SystemExit):
         main(["--help"])
     assert "draw" in capsys.readouterr().out
+
+
+# --- component ids that spell the tool's own names, and names in other scripts ----------
+PLANETARY = ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml"
+
+
+def renamed_planetary(tmp_path, new: dict[str, str]) -> str:
+    """The plain 2K-H (sun in, carrier out) with its ids replaced, written as YAML."""
+    import yaml
+
+    text = PLANETARY.read_text()
+    data = yaml.safe_load(text)
+    get = lambda c: new.get(c, c)  # noqa: E731
+    data["components"] = {get(c): v for c, v in data["components"].items()}
+    for link in data["links"]:
+        link["between"] = [get(c) for c in link["between"]]
+        link.update({"carrier": get(link["carrier"])} if "carrier" in link else {})
+    for port in data["ports"]:
+        port["component"] = get(port["component"])
+    path = tmp_path / "renamed.yaml"
+    path.write_text(yaml.safe_dump(data, allow_unicode=True), encoding="utf-8")
+    return str(path)
+
+
+@pytest.mark.parametrize("new", [
+    {"sun": "motor"}, {"carrier": "generator"},
+    {"sun": "loss", "carrier": "motor", "ring": "generator", "planet": "mesh loss-motor"},
+    {"frame": "F", "ring": "R", "carrier": "F/R"},
+    {"sun": "$\\frac{$", "planet": "$x^2$"}], ids=["motor", "generator", "all", "slash", "math"])
+def test_draws_whatever_the_ids(tmp_path, capsys, new) -> None:
+    # these used to end in a traceback (a cycle through "motor", a refused "F/R", a
+    # mathtext parse error)
+    target = tmp_path / "d.png"
+    status, out, err = draw(capsys, renamed_planetary(tmp_path, new), "-o", str(target))
+    assert status == 0 and err == ""
+    assert target.read_bytes().startswith(MAGIC[".png"])
+
+
+CJK = {"sun": "太阳轮", "planet": "遊星歯車", "ring": "１２", "carrier": "🚀 carrier"}
+
+
+def test_names_in_other_scripts_one_line_at_most(tmp_path) -> None:
+    # a process of its own: what a user sees on stderr, with or without a CJK font
+    target = tmp_path / "cjk.png"
+    run = subprocess.run([sys.executable, "-m", "powergraph.cli.main", "draw",
+                          renamed_planetary(tmp_path, CJK), "-o", str(target)],
+                         capture_output=True, text=True, encoding="utf-8", timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert len(run.stderr.splitlines()) <= 1 and "Glyph" not in run.stderr
+    assert target.read_bytes().startswith(MAGIC[".png"])
+
+
+def test_names_no_font_can_draw_are_named_once(tmp_path, capsys, monkeypatch) -> None:
+    from powergraph.plot import fonts
+
+    monkeypatch.setattr(fonts, "font_families", lambda: ("DejaVu Sans",))
+    status, out, err = draw(capsys, renamed_planetary(tmp_path, CJK), "-o",
+                            str(tmp_path / "cjk.png"))
+    assert status == 0
+    (line,) = err.splitlines()
+    assert line.startswith("powergraph: warning: no installed font can draw")
+    assert all(repr(name) in line for name in ("太阳轮", "遊星歯車", "🚀 carrier"))
+    assert "fonts-noto-cjk" in line and "Glyph" not in line

@@ -44,7 +44,8 @@ def test_solve_json_has_the_spec_keys_and_reference_numbers(capsys) -> None:
     assert set(out["speeds"]) == {str(i) for i in range(8)}
     assert set(out["torques"]) == {"1", "6", "0"}
     assert out["input_power"] == pytest.approx(out["output_power"] + out["total_loss"])
-    assert all({"from", "to", "power"} == set(f) and f["power"] >= 0 for f in out["flows"])
+    assert all({"from", "to", "power", "from_kind", "to_kind"} == set(f) and f["power"] >= 0
+               for f in out["flows"])
     assert out["circulating_power"] == 0 and out["self_locking"] is False
 
 

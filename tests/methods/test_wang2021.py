@@ -177,7 +177,8 @@ def test_flows_realise_the_paper_losses_consistently(rv40e) -> None:
     assert rv40e.realised_efficiencies[0] == pytest.approx(1 - 0.06 * 121 / 120, rel=1e-9)
     flows = rv40e.to_dict()["flows"]
     assert all(f["power"] >= 0 for f in flows)
-    assert {"from": "motor", "to": "1", "power": pytest.approx(2270.0)} in flows
+    assert {"from": "motor", "to": "1", "power": pytest.approx(2270.0),
+            "from_kind": "motor", "to_kind": "body"} in flows
 
 
 def test_split_flows_are_the_papers_fig5(rv40e) -> None:

@@ -20,12 +20,12 @@ import pytest
 import powergraph as pg
 from powergraph.plot.layout.geometry import (CURVE4, Box, bezier_chain, head_polygon,
                                                place_label, sample, trim_end)
-from powergraph.plot.layout.layout import layout_flow, skeleton_of
+from powergraph.plot.layout.layout import LOSS_STUB, layout_flow, skeleton_of
 from powergraph.plot.layout.place import _project
 from powergraph.plot.layout.view import flow_view, format_power, format_share, loop_edges
 from powergraph.errors import UsageError
-from powergraph.model import loads_model
-from powergraph.statics.flow import Flow
+from powergraph.model import loads_model, model_from_dict
+from powergraph.statics.flow import Flow, Node
 
 ROOT = Path(__file__).resolve().parents[2]
 MODEL_FILES = sorted((ROOT / "models").glob("*.yaml"))
@@ -66,7 +66,7 @@ def test_view_is_the_results_flow_graph(rv40e, solve_ok, frame) -> None:
     graph = result.flow_graph(frame)
     assert set(view.kinds) >= set(graph.nodes)
     for node, kind in graph.nodes(data="kind"):
-        if node == view.held:
+        if node.name == view.held:
             assert view.kinds[node] == "frame"
         else:
             assert view.kinds[node] == ("body" if kind == "frame" else kind)
@@ -102,7 +102,9 @@ def test_labels_give_power_and_share(rv40e, solve_ok) -> None:
 def test_loop_edges_are_the_cycles() -> None:
     flows = [Flow("a", "b", 5.0), Flow("b", "c", 3.0), Flow("c", "a", 2.0),
              Flow("c", "d", 1.0), Flow("d", "e", 0.0), Flow("e", "d", 0.0)]
-    assert loop_edges(flows) == {("a", "b"), ("b", "c"), ("c", "a")}
+    body = {name: Node("body", name) for name in "abc"}
+    assert loop_edges(flows) == {(body["a"], body["b"]), (body["b"], body["c"]),
+                                 (body["c"], body["a"])}
 
 
 def test_closed_differential_circulates(solve_ok) -> None:
@@ -110,8 +112,8 @@ def test_closed_differential_circulates(solve_ok) -> None:
     view = flow_view(result)
     assert result.circulating_power > 0
     assert view.circulating == pytest.approx(result.circulating_power)
-    assert ("c/a", "mesh a-b") in view.loop_edges
-    assert ("motor", "s") not in view.loop_edges
+    assert (Node("body", "c/a"), Node("mesh", "mesh a-b")) in view.loop_edges
+    assert (Node("motor", "motor"), Node("body", "s")) not in view.loop_edges
 
 
 # --- geometry helpers ------------------------------------------------------------------
@@ -153,7 +155,7 @@ def test_place_label_refuses_when_everything_collides() -> None:
 # --- the layout follows the power ------------------------------------------------------
 def test_rv40e_actual_layers_in_flow_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e)))
-    x = {n: p.x for n, p in layout.nodes.items()}
+    x = {n.name: p.x for n, p in layout.nodes.items()}
     chain = ["motor", "1", "mesh 1-2", "2/3", "mesh 4-5", "4", "coupling 4-6", "6/7",
              "generator"]
     assert [x[n] for n in chain] == sorted(x[n] for n in chain)
@@ -162,7 +164,7 @@ def test_rv40e_actual_layers_in_flow_order(rv40e, solve_ok) -> None:
 
 def test_frame_7_keeps_idle_members_in_their_actual_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e), "7"))
-    x = {n: p.x for n, p in layout.nodes.items()}
+    x = {n.name: p.x for n, p in layout.nodes.items()}
     assert x["4"] < x["coupling 4-6"] < x["6/7"]      # all three carry 0 W in this view
 
 
@@ -184,7 +186,7 @@ def test_closed_differential_loop_drawn_backwards_at_its_weakest(solve_ok, frame
         backwards = [e for e in loop if e.vertices[0][0] > e.vertices[-1][0]]
         assert len(backwards) == 1
         assert backwards[0].flow.power == min(e.flow.power for e in loop)
-        assert backwards[0].key == ("mesh p-r", "c/a")
+        assert backwards[0].key == (Node("mesh", "mesh p-r"), Node("body", "c/a"))
 
 
 def check_layout(view, layout) -> None:
@@ -193,8 +195,8 @@ def check_layout(view, layout) -> None:
     # one route per flow, in order, from source to target
     assert [e.flow for e in layout.edges] == list(view.flows)
     for edge in layout.edges:
-        source = nodes[edge.flow.source]
-        target = nodes[f"loss@{edge.flow.source}" if edge.loss else edge.flow.target]
+        source = nodes[edge.flow.source_node]
+        target = nodes[_stub(edge) if edge.loss else edge.flow.target_node]
         assert _touches(source.box, edge.vertices[0]), edge.key
         assert _touches(target.box, edge.vertices[-1]), edge.key
     # motor leftmost, generator rightmost
@@ -206,10 +208,10 @@ def check_layout(view, layout) -> None:
             assert node.x == max(xs), name
     # arrows that carry power point right, except on a loop or at a port fed backwards
     for edge in layout.edges:
-        kinds = {view.kinds[edge.flow.source], view.kinds.get(edge.flow.target)}
+        kinds = {view.kinds[edge.flow.source_node], view.kinds.get(edge.flow.target_node)}
         if edge.zero or edge.loss or edge.loop or kinds & {"motor", "generator"}:
             continue
-        assert nodes[edge.flow.source].x < nodes[edge.flow.target].x, edge.key
+        assert nodes[edge.flow.source_node].x < nodes[edge.flow.target_node].x, edge.key
     # widths proportional to power above the floor; 0 W links thin
     ratios = [e.width / e.flow.power for e in layout.edges
               if not e.zero and e.width > style.min_width]
@@ -217,7 +219,7 @@ def check_layout(view, layout) -> None:
     assert all(e.width == style.zero_width for e in layout.edges if e.zero)
     # loss sinks straight under their element
     for edge in (e for e in layout.edges if e.loss):
-        owner, sink = nodes[edge.flow.source], nodes[f"loss@{edge.flow.source}"]
+        owner, sink = nodes[edge.flow.source_node], nodes[_stub(edge)]
         assert sink.x == owner.x and sink.y < owner.y
     # labels: placed, clear of every node and of each other
     assert layout.clean
@@ -230,6 +232,11 @@ def check_layout(view, layout) -> None:
     # nodes do not overlap each other
     for a, b in itertools.combinations(boxes, 2):
         assert not a.overlaps(b)
+
+
+def _stub(edge) -> Node:
+    """The loss sink drawn under the element of a loss arrow."""
+    return Node(LOSS_STUB, f"loss@{edge.flow.source}")
 
 
 def _touches(box: Box, point, tol: float = 1.0) -> bool:
@@ -271,3 +278,46 @@ def test_same_layout_in_other_processes() -> None:
                              capture_output=True, text=True).stdout
         digests.add(out.strip())
     assert len(digests) == 1
+
+
+def test_ids_that_spell_layout_helpers_stay_nodes_of_their_own(solve_ok) -> None:
+    # The loss sink under mesh "mesh s-planet" and the waypoints of long arrows are
+    # layout nodes of their own kinds: a carrier called "loss@mesh s-planet" (once taken
+    # for that sink, and drawn as a loss) and a ring called "·0·1" stay bodies.
+    import yaml
+
+    data = yaml.safe_load((ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text())
+    new = {"sun": "s", "carrier": "loss@mesh s-planet", "ring": "·0·1"}
+    get = lambda c: new.get(c, c)  # noqa: E731
+    data["components"] = {get(c): v for c, v in data["components"].items()}
+    for link in data["links"]:
+        link.update(between=[get(c) for c in link["between"]],
+                    **({"carrier": get(link["carrier"])} if "carrier" in link else {}))
+    for port in data["ports"]:
+        port["component"] = get(port["component"])
+    result = solve_ok(model_from_dict(data))
+    view = flow_view(result)
+    layout = layout_flow(view)
+    flow_nodes = {n for f in view.flows for n in f.key if n.kind != "loss"}
+    stubs = [f for f in view.flows if f.target_kind == "loss"]
+    assert len(layout.nodes) == len(flow_nodes) + len(stubs) == 8 + 2
+    carrier = layout.nodes[Node("body", "loss@mesh s-planet")]
+    assert carrier.kind == "body" and carrier.shape.text == "loss@mesh s-planet"
+    assert layout.nodes[Node("frame", "frame/·0·1")].kind == "frame"
+    check_layout(view, layout)
+
+
+def test_a_very_long_id_does_not_widen_the_diagram(solve_ok) -> None:
+    # a 400-character id is cut to MAX_NAME characters in its box and its mesh circle:
+    # the diagram stays about as wide as with short ids (it was ~5300 pt wide)
+    import yaml
+
+    data = yaml.safe_load((ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text())
+    data["components"]["S" * 400] = data["components"].pop("sun")
+    data["links"][0]["between"][0] = data["ports"][0]["component"] = "S" * 400
+    plain = layout_flow(flow_view(solve_ok(loads_model(
+        (ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text()))))
+    long = layout_flow(flow_view(solve_ok(model_from_dict(data))))
+    width = lambda layout: layout.bounds.x1 - layout.bounds.x0  # noqa: E731
+    assert width(long) < 2 * width(plain)
+    assert long.nodes[Node("body", "S" * 400)].shape.text == "S" * 39 + "…"

@@ -17,6 +17,7 @@ import pytest
 import powergraph as pg
 from powergraph.errors import SolveError
 from powergraph.model import model_from_dict
+from powergraph.statics.flow import Node
 from powergraph.testing import assert_conservation
 
 MODELS = Path(__file__).resolve().parents[2] / "models"
@@ -183,8 +184,8 @@ def test_flows_json_and_report() -> None:
     text = result.text_report()
     assert "bearings and drag" in text and "drag 2" in text
     graph = result.flow_graph()
-    assert graph.nodes["bearing 1-0"]["kind"] == "bearing"
-    assert graph.nodes["drag 2"]["kind"] == "drag"
+    assert graph.nodes[Node("bearing", "bearing 1-0")]["kind"] == "bearing"
+    assert graph.nodes[Node("drag", "drag 2")]["kind"] == "drag"
 
 
 def test_rv40e_crank_bearings_and_output_drag() -> None:

@@ -93,8 +93,25 @@ class Shape:
         return max(self.width, self.caption_size[0]) / 2
 
 
+#: Longest node text drawn (characters per line); longer names are cut with "…".
+MAX_NAME = 40
+
+
+def shortened(name: str, limit: int = MAX_NAME) -> str:
+    """``name`` with each line cut to ``limit`` characters (a long id would otherwise
+    make its node, and the figure, as wide as the text).
+
+    >>> shortened("S" * 50, 10), shortened("2/3")
+    ('SSSSSSSSS…', '2/3')
+    """
+    lines = ["".join(" " if c < " " or c == "\x7f" else c for c in line)   # tabs...
+             for line in name.split("\n")]
+    return "\n".join(line if len(line) <= limit else line[:limit - 1] + "…" for line in lines)
+
+
 def node_shape(name: str, kind: str, text_size: TextSize, font: float) -> Shape:
     """The symbol of a node: body box, mesh circle, coupling square, motor ⊙ ..."""
+    name = shortened(name)
     if kind in ("motor", "generator", "ground"):
         caption_size = text_size(name, font * 0.9)
         width, height = (2.4 * font, 2.4 * font) if kind != "ground" else (3 * font, 1.3 * font)

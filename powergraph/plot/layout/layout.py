@@ -31,6 +31,10 @@ Examples
 >>> layout = layout_flow(flow_view(result))                           # doctest: +SKIP
 >>> layout.nodes["motor"].x < layout.nodes["2/3"].x < layout.nodes["generator"].x  # doctest: +SKIP
 True
+
+Nodes are flow-graph :class:`~powergraph.statics.flow.Node` s (kind and name); waypoints
+and the loss sinks under elements are nodes of kinds no flow-graph node has (``waypoint``,
+``loss stub``). ``layout.nodes`` also answers to an unambiguous name (``NodeMap``).
 """
 from __future__ import annotations
 
@@ -42,8 +46,11 @@ import numpy as np
 
 from powergraph.plot.layout.geometry import (Box, Shape, TextSize, estimate_text_size,
                                                head_polygon, trim_end)
+from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.view import FlowView
-from powergraph.statics.flow import LOSS, Flow
+from powergraph.statics.flow import LOSS, Flow, Node
+
+WAYPOINT, LOSS_STUB = "waypoint", "loss stub"
 
 
 @dataclass(frozen=True)
@@ -74,14 +81,19 @@ class LayoutStyle:
 
 @dataclass(frozen=True)
 class NodePlace:
-    """A drawn node: its symbol centred at ``(x, y)``, its caption underneath if any."""
+    """A drawn node: its symbol centred at ``(x, y)``, its caption underneath if any;
+    ``kind`` is the kind drawn (a held body is drawn as ``frame``)."""
 
-    name: str
+    node: Node
     kind: str
     x: float
     y: float
     shape: Shape
     layer: int
+
+    @property
+    def name(self) -> str:
+        return self.node.name
 
     @property
     def box(self) -> Box:
@@ -118,8 +130,8 @@ class EdgeRoute:
     head_size: tuple[float, float] = (0.0, 0.0)
 
     @property
-    def key(self) -> tuple[str, str]:
-        return (self.flow.source, self.flow.target)
+    def key(self) -> tuple[Node, Node]:
+        return self.flow.key
 
     @property
     def head(self) -> tuple[tuple[float, float], ...] | None:
@@ -141,7 +153,7 @@ class FlowLayout:
     """Positions of every node, arrow and label of one diagram (points)."""
 
     view: FlowView
-    nodes: Mapping[str, NodePlace]
+    nodes: Mapping[Node, NodePlace]
     edges: tuple[EdgeRoute, ...]
     bounds: Box
     style: LayoutStyle
@@ -152,19 +164,20 @@ class FlowLayout:
         """True when every label found a spot clear of nodes and other labels."""
         return all(edge.placed for edge in self.edges)
 
-    def edge(self, source: str, target: str) -> EdgeRoute:
-        return next(e for e in self.edges if e.key == (source, target))
+    def edge(self, source: Node | str, target: Node | str) -> EdgeRoute:
+        """The arrow from ``source`` to ``target`` (nodes, or names when unambiguous)."""
+        return NodeMap({e.key: e for e in self.edges})[(source, target)]
 
 
 @dataclass(frozen=True)
 class Skeleton:
     """The combinatorial layout: layers (top to bottom), arrow chains, loss stubs."""
 
-    layers: tuple[tuple[str, ...], ...]
-    layer_of: Mapping[str, int]
-    chains: Mapping[int, tuple[str, ...]]        # flow index -> nodes left to right
+    layers: tuple[tuple[Node, ...], ...]
+    layer_of: Mapping[Node, int]
+    chains: Mapping[int, tuple[Node, ...]]       # flow index -> nodes left to right
     reversed: frozenset                           # flows drawn right to left
-    stubs: Mapping[int, str] = field(default_factory=dict)  # loss flow -> stub node
+    stubs: Mapping[int, Node] = field(default_factory=dict)  # loss flow -> stub node
     side: frozenset = frozenset()                 # flows between nodes of one layer
 
 
@@ -195,41 +208,42 @@ def layout_flow(view: FlowView, text_size: TextSize = estimate_text_size,
 def skeleton_of(view: FlowView) -> Skeleton:
     """Layers, waypoints and orders of ``view`` (no sizes involved)."""
     kinds, flows = view.kinds, view.flows
-    nodes = sorted({n for f in flows for n in (f.source, f.target) if n != LOSS})
+    nodes = sorted({n for f in flows for n in f.key if n.kind != LOSS})
     dag = _acyclic(view, nodes)
     layer = _layers(dag, kinds)
     _place_idle(view, nodes, layer)
     chains, layer_of, side = {}, dict(layer), []
     for index, flow in enumerate(flows):
-        if flow.target == LOSS:
+        if flow.target_kind == LOSS:
             continue
-        a, b = flow.source, flow.target
+        a, b = flow.key
         if layer[a] > layer[b] or (layer[a] == layer[b] and kinds.get(a) == "generator"):
             a, b = b, a
         if layer[a] == layer[b]:
             side.append(index)
-        waypoints = tuple(f"·{index}·{k}" for k in range(layer[a] + 1, layer[b]))
+        waypoints = tuple(Node(WAYPOINT, f"·{index}·{k}") for k in range(layer[a] + 1, layer[b]))
         for k, name in zip(range(layer[a] + 1, layer[b]), waypoints):
             layer_of[name] = k
         chains[index] = (a, *waypoints, b)
-    reversed_ = frozenset(i for i, chain in chains.items() if chain[0] != flows[i].source)
-    stubs = {i: f"loss@{f.source}" for i, f in enumerate(flows) if f.target == LOSS}
+    reversed_ = frozenset(i for i, chain in chains.items() if chain[0] != flows[i].source_node)
+    stubs = {i: Node(LOSS_STUB, f"loss@{f.source}") for i, f in enumerate(flows)
+             if f.target_kind == LOSS}
     layers = _order(layer_of, {i: c for i, c in chains.items() if i not in side}, flows,
                     view)
     return Skeleton(layers, layer_of, chains, reversed_, stubs, frozenset(side))
 
 
-def _acyclic(view: FlowView, nodes: list[str]) -> nx.DiGraph:
+def _acyclic(view: FlowView, nodes: list[Node]) -> nx.DiGraph:
     """A DAG of the arrows that carry power (strongest first; an arrow that would close
     a cycle is laid out reversed). Motors and generators are always in it."""
     kinds, flows = view.kinds, view.flows
     dag = nx.DiGraph()
     dag.add_nodes_from(n for n in nodes if kinds.get(n) in ("motor", "generator"))
     ranked = sorted((i for i, f in enumerate(flows)
-                     if f.target != LOSS and not view.is_zero(f)),
+                     if f.target_kind != LOSS and not view.is_zero(f)),
                     key=lambda i: (-flows[i].power, i))
     for i in ranked:
-        a, b = flows[i].source, flows[i].target
+        a, b = flows[i].key
         if kinds.get(a) == "generator" or kinds.get(b) == "motor":
             a, b = b, a                      # motors stay left, generators right
         if a in dag and b in dag and nx.has_path(dag, b, a):
@@ -238,9 +252,9 @@ def _acyclic(view: FlowView, nodes: list[str]) -> nx.DiGraph:
     return dag
 
 
-def _layers(dag: nx.DiGraph, kinds: Mapping[str, str]) -> dict[str, int]:
+def _layers(dag: nx.DiGraph, kinds: Mapping[Node, str]) -> dict[Node, int]:
     """Longest path from the motor; sources pulled right; generators last."""
-    order = list(nx.lexicographical_topological_sort(dag, key=str))
+    order = list(nx.lexicographical_topological_sort(dag, key=_sort_key))
     layer: dict[str, int] = {}
     for n in order:
         layer[n] = max((layer[p] + 1 for p in dag.predecessors(n)), default=0)
@@ -255,16 +269,21 @@ def _layers(dag: nx.DiGraph, kinds: Mapping[str, str]) -> dict[str, int]:
     return {n: v - low for n, v in layer.items()}
 
 
-def _place_idle(view: FlowView, nodes: list[str], layer: dict[str, int]) -> None:
+def _sort_key(node: Node) -> str:
+    """Names first, then kinds: plain ids keep the order they always had."""
+    return f"{node.name}\x00{node.kind}"
+
+
+def _place_idle(view: FlowView, nodes: list[Node], layer: dict[Node, int]) -> None:
     """Layers of the nodes joined only by zero-power arrows (the held frame, idle
     members). A connected group of them keeps its order in the actual flow (when the
     view has one) and is shifted as a block; each node avoids its neighbours' layers
     and sits as close to them as it can."""
-    links: dict[str, set[str]] = {n: set() for n in nodes}
+    links: dict[Node, set[Node]] = {n: set() for n in nodes}
     for f in view.flows:
-        if f.target != LOSS:
-            links[f.source].add(f.target)
-            links[f.target].add(f.source)
+        if f.target_kind != LOSS:
+            links[f.source_node].add(f.target_node)
+            links[f.target_node].add(f.source_node)
     idle = [n for n in nodes if n not in layer]
     hint = _reference_layers(view) if view.reference else {}
     groups = nx.Graph()
@@ -285,13 +304,13 @@ def _place_idle(view: FlowView, nodes: list[str], layer: dict[str, int]) -> None
         layer[n] -= low
 
 
-def _reference_layers(view: FlowView) -> dict[str, int]:
+def _reference_layers(view: FlowView) -> dict[Node, int]:
     actual = FlowView(view.name, None, view.reference, view.kinds, None, view.input_power,
                       0.0, frozenset())
     return _layers(_acyclic(actual, sorted(view.kinds)), view.kinds)
 
 
-def _shift_group(group, hint, links, layer, last) -> dict[str, int] | None:
+def _shift_group(group, hint, links, layer, last) -> dict[Node, int] | None:
     """The group at its reference layers plus the shift that keeps it nearest its placed
     neighbours without sharing a layer with one (None if it has no reference)."""
     if len(group) < 2 or any(n not in hint for n in group):
@@ -317,11 +336,11 @@ def _place_one(n, links, layer, last) -> None:
     layer[n] = min(free, key=lambda k: (abs(k - mean), k))
 
 
-def _segments(chains: Mapping[int, tuple[str, ...]]) -> list[tuple[str, str, int]]:
+def _segments(chains: Mapping[int, tuple[Node, ...]]) -> list[tuple[Node, Node, int]]:
     return [(a, b, i) for i, chain in chains.items() for a, b in zip(chain[:-1], chain[1:])]
 
 
-def _order(layer_of, chains, flows, view) -> tuple[tuple[str, ...], ...]:
+def _order(layer_of, chains, flows, view) -> tuple[tuple[Node, ...], ...]:
     """Top-to-bottom order in each layer: discovery order, then barycentre sweeps."""
     segs = _segments(chains)
     count = max(layer_of.values(), default=0) + 1
@@ -348,9 +367,9 @@ def _order(layer_of, chains, flows, view) -> tuple[tuple[str, ...], ...]:
     return tuple(tuple(x) for x in best)
 
 
-def _discovery(layer_of, segs, flows, view) -> dict[str, int]:
+def _discovery(layer_of, segs, flows, view) -> dict[Node, int]:
     """Depth-first discovery order from the motor(s) along the strongest arrows."""
-    adjacency: dict[str, list[tuple[float, str]]] = {n: [] for n in layer_of}
+    adjacency: dict[Node, list[tuple[float, Node]]] = {n: [] for n in layer_of}
     for a, b, i in segs:
         power = flows[i].power
         adjacency[a].append((-power, b))

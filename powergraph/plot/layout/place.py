@@ -21,9 +21,11 @@ from powergraph.plot.layout.geometry import (
     CURVE4, MOVETO, Box, Shape, TextSize, bezier_chain, bounds, estimate_text_size, head_box,
     label_candidates, node_shape, place_label, port, port_offsets, sample, segments,
     straight, stub_candidates)
-from powergraph.plot.layout.layout import (EdgeRoute, FlowLayout, LayoutStyle, NodePlace,
-                                             Skeleton)
+from powergraph.plot.layout.layout import (WAYPOINT, EdgeRoute, FlowLayout, LayoutStyle,
+                                             NodePlace, Skeleton)
+from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.view import FlowView
+from powergraph.statics.flow import Node
 
 #: Padding (points) around a label's text: the plot draws its white box this far out.
 LABEL_PAD = 1.5
@@ -32,10 +34,10 @@ LABEL_PAD = 1.5
 def place(view: FlowView, skeleton: Skeleton, text_size: TextSize = estimate_text_size,
           style: LayoutStyle = LayoutStyle(), spread: float = 1.0) -> FlowLayout:
     """Geometry of ``skeleton`` with gaps scaled by ``spread`` (>= 1)."""
-    shapes = {n: node_shape(n, view.kinds.get(n, "body"), text_size, style.font_size)
-              for n in skeleton.layer_of if not n.startswith("·")}
+    shapes = {n: node_shape(n.name, view.kinds.get(n, "body"), text_size, style.font_size)
+              for n in skeleton.layer_of if n.kind != WAYPOINT}
     stub = node_shape("loss", "loss", text_size, style.font_size)
-    stub_of = {view.flows[i].source: name for i, name in skeleton.stubs.items()}
+    stub_of = {view.flows[i].source_node: name for i, name in skeleton.stubs.items()}
     sizes = {i: _padded(text_size(view.label(f), style.label_size))
              for i, f in enumerate(view.flows)}
     stub_len = style.stub_length * spread
@@ -56,17 +58,17 @@ def place(view: FlowView, skeleton: Skeleton, text_size: TextSize = estimate_tex
 
 
 # --- rows: y of every node (step 4 of the layout) ---------------------------------------
-def rows(skeleton: Skeleton, extents: Mapping[str, tuple[float, float]],
-         weights: Mapping[tuple[str, str], float], gap: float, sweeps: int = 30) -> dict:
+def rows(skeleton: Skeleton, extents: Mapping[Node, tuple[float, float]],
+         weights: Mapping[tuple[Node, Node], float], gap: float, sweeps: int = 30) -> dict:
     """y of every node: pulled towards its neighbours, at least ``gap`` apart.
 
     ``extents[n] = (up, down)`` is how far node ``n`` reaches above and below its y.
     """
-    neighbours: dict[str, list[tuple[str, float]]] = {n: [] for n in skeleton.layer_of}
+    neighbours: dict[Node, list[tuple[Node, float]]] = {n: [] for n in skeleton.layer_of}
     for (a, b), w in weights.items():
         neighbours[a].append((b, w))
         neighbours[b].append((a, w))
-    y: dict[str, float] = {}
+    y: dict[Node, float] = {}
     for layer in skeleton.layers:
         seps = _separations(layer, extents, gap)
         offsets = np.concatenate([[0.0], np.cumsum(seps)])
@@ -125,9 +127,9 @@ def _extent(shape: Shape | None, has_stub: bool, stub: Shape, stub_len: float,
     return (shape.up, down)
 
 
-def _weights(view: FlowView, skeleton: Skeleton) -> dict[tuple[str, str], float]:
+def _weights(view: FlowView, skeleton: Skeleton) -> dict[tuple[Node, Node], float]:
     largest = view.largest or 1.0
-    weights: dict[tuple[str, str], float] = {}
+    weights: dict[tuple[Node, Node], float] = {}
     for i, chain in skeleton.chains.items():
         flow = view.flows[i]
         w = 0.3 if view.is_zero(flow) else 1.0 + 3.0 * flow.power / largest
@@ -146,8 +148,9 @@ def _columns(skeleton, shapes, sizes, stub, stub_of, style, spread) -> list[floa
         for a in chain[:-1]:
             k = skeleton.layer_of[a]
             need[k] = max(need[k], sizes[i][0])
+    owner_of = {name: owner for owner, name in stub_of.items()}
     for i, name in skeleton.stubs.items():
-        k = skeleton.layer_of[name.split("@", 1)[1]]
+        k = skeleton.layer_of[owner_of[name]]
         need[k] = max(need[k], 4.0 + sizes[i][0])
     x = [0.0]
     for k in range(count - 1):
@@ -155,10 +158,10 @@ def _columns(skeleton, shapes, sizes, stub, stub_of, style, spread) -> list[floa
     return x
 
 
-def _ports(skeleton: Skeleton, points: Mapping[str, tuple[float, float]],
-           nodes: Mapping[str, NodePlace], style: LayoutStyle) -> dict:
+def _ports(skeleton: Skeleton, points: Mapping[Node, tuple[float, float]],
+           nodes: Mapping[Node, NodePlace], style: LayoutStyle) -> dict:
     """Offset of every arrow end on its node's side, ordered so they do not cross."""
-    ends: dict[tuple[str, int], list[tuple[float, int, str]]] = {}
+    ends: dict[tuple[Node, int], list[tuple[float, int, str]]] = {}
     for i, chain in skeleton.chains.items():
         back = +1 if i in skeleton.side else -1
         ends.setdefault((chain[0], +1), []).append((points[chain[1]][1], i, "start"))
@@ -190,7 +193,7 @@ def _paths(view, skeleton, nodes, points, stub_of, style) -> dict[int, tuple]:
             vertices = vertices[::-1]
         paths[i] = (vertices, codes)
     for i, name in skeleton.stubs.items():
-        owner, sink = nodes[view.flows[i].source], nodes[name]
+        owner, sink = nodes[view.flows[i].source_node], nodes[name]
         paths[i] = straight([(owner.x, owner.y - owner.shape.height / 2),
                              (sink.x, sink.y + sink.shape.height / 2)])
     return paths
@@ -229,7 +232,8 @@ def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
     for i in order:
         vertices, codes = paths[i]
         if i in skeleton.stubs:
-            clear = max(nodes[flows[i].source].shape.width, nodes[skeleton.stubs[i]].shape.width)
+            clear = max(nodes[flows[i].source_node].shape.width,
+                        nodes[skeleton.stubs[i]].shape.width)
             candidates = stub_candidates(vertices[0], vertices[-1], sizes[i], clear / 2,
                                          nodes[skeleton.stubs[i]].box)
         else:
@@ -246,10 +250,10 @@ def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
         (xy, box), placed = spots[i]
         zero = view.is_zero(flow)
         edges.append(EdgeRoute(flow, *paths[i], width=widths[i],
-                               zero=zero, loop=(flow.source, flow.target) in view.loop_edges,
+                               zero=zero, loop=flow.key in view.loop_edges,
                                loss=i in skeleton.stubs, label=view.label(flow),
                                label_xy=xy, label_box=box, placed=placed,
                                head_size=style.head(widths[i])))
     boxes = [b for node in nodes.values() for b in node.boxes] + [e.label_box for e in edges]
-    return FlowLayout(view, nodes, tuple(edges), bounds(boxes, ink, style.margin), style,
-                      spread)
+    return FlowLayout(view, NodeMap(nodes), tuple(edges), bounds(boxes, ink, style.margin),
+                      style, spread)

@@ -25,11 +25,9 @@ from typing import Any, Mapping
 import networkx as nx
 
 from powergraph.errors import UsageError
-from powergraph.statics.flow import GENERATOR, GROUND, LOSS, MOTOR, Flow, circulating_power
-
-#: Node kinds a diagram knows how to draw.
-KINDS = ("body", "frame", "mesh", "coupling", "bearing", "drag", "motor", "generator", "loss",
-         "ground")
+from powergraph.plot.layout.nodes import NodeMap
+from powergraph.statics.flow import (BODY, FRAME, GENERATOR, GROUND, KINDS, LOSS, MOTOR, Flow,
+                                     Node, circulating_power)
 
 
 @dataclass(frozen=True)
@@ -44,16 +42,17 @@ class FlowView:
         Body whose frame the powers are seen from; None for the actual powers.
     flows : tuple of Flow
         Every arrow, in the result's order (zero-power arrows included).
-    kinds : mapping
-        Node name -> one of :data:`KINDS`.
+    kinds : NodeMap
+        :class:`~powergraph.statics.flow.Node` -> the kind drawn (one of ``KINDS``; the
+        held body is drawn as ``frame``). A node's name may stand for it when unambiguous.
     held : str or None
         The body drawn as the frame: the observer in a moving view, else the housing.
     input_power : float
         The actual input power P; every share is ``power / P``.
     circulating : float
         Circulating power of the flows shown (W, 0 when they have no directed cycle).
-    loop_edges : frozenset of (source, target)
-        Arrows on a directed cycle of positive power.
+    loop_edges : frozenset of (Node, Node)
+        Arrows on a directed cycle of positive power (``Flow.key``).
     method : str
         Method of the result ("virtual-power", "wang2021", ...).
     reference : tuple of Flow
@@ -64,7 +63,7 @@ class FlowView:
     name: str
     frame_body: str | None
     flows: tuple[Flow, ...]
-    kinds: Mapping[str, str]
+    kinds: Mapping[Node, str]
     held: str | None
     input_power: float
     circulating: float
@@ -148,11 +147,11 @@ def flow_view(result: Any, frame: str | int | None = None) -> FlowView:
     flows = _flows(result, component)
     kinds = _kinds(result, model, flows, component)
     held = frame_body if frame_body is not None else (model.frame_body if model else None)
-    if held is not None and held in kinds:
-        kinds = {n: ("frame" if n == held else ("body" if k == "frame" else k))
-                 for n, k in kinds.items()}
+    if any(n.kind in (BODY, FRAME) and n.name == held for n in kinds):
+        kinds = {n: (FRAME if n.kind in (BODY, FRAME) and n.name == held
+                     else (BODY if k == FRAME else k)) for n, k in kinds.items()}
     return FlowView(name=_name(result, model), frame_body=frame_body, flows=tuple(flows),
-                    kinds=kinds, held=held, input_power=_input_power(result, flows),
+                    kinds=NodeMap(kinds), held=held, input_power=_input_power(result, flows),
                     circulating=circulating_power(list(flows)),
                     loop_edges=loop_edges(flows),
                     method=str(getattr(result, "method", "virtual-power")),
@@ -162,12 +161,13 @@ def flow_view(result: Any, frame: str | int | None = None) -> FlowView:
 def loop_edges(flows: tuple[Flow, ...] | list[Flow], tolerance: float = 1e-9) -> frozenset:
     """Arrows of positive power that lie on a directed cycle (circulating power).
 
-    >>> sorted(loop_edges([Flow("a", "b", 5.0), Flow("b", "a", 2.0), Flow("b", "c", 9.0)]))
+    >>> edges = loop_edges([Flow("a", "b", 5.0), Flow("b", "a", 2.0), Flow("b", "c", 9.0)])
+    >>> sorted((str(a), str(b)) for a, b in edges)
     [('a', 'b'), ('b', 'a')]
     """
     largest = max((f.power for f in flows), default=0.0)
     graph = nx.DiGraph()
-    graph.add_edges_from((f.source, f.target) for f in flows
+    graph.add_edges_from(f.key for f in flows
                          if f.power > tolerance * max(largest, 1e-300))
     loops = [c for c in nx.strongly_connected_components(graph) if len(c) > 1]
     return frozenset((u, v) for c in loops for u, v in graph.subgraph(c).edges)
@@ -206,31 +206,40 @@ def _flows(result, component: str | None) -> list[Flow]:
         items = result.flows()
     else:
         items = result.to_dict()["flows"]
-    return [item if isinstance(item, Flow)
-            else Flow(str(item["from"]), str(item["to"]), float(item["power"]))
-            for item in items]
+    return [item if isinstance(item, Flow) else _flow_from_dict(item) for item in items]
 
 
-def _kinds(result, model, flows, component) -> dict[str, str]:
-    kinds: dict[str, str] = {}
+def _flow_from_dict(item: Mapping) -> Flow:
+    """A JSON flow; one written without ``from_kind``/``to_kind`` (older output) has its
+    kinds guessed from the names."""
+    source, target = str(item["from"]), str(item["to"])
+    return Flow(source, target, float(item["power"]),
+                str(item.get("from_kind") or _kind_from_name(source)),
+                str(item.get("to_kind") or _kind_from_name(target)))
+
+
+def _kinds(result, model, flows, component) -> dict[Node, str]:
+    kinds: dict[Node, str] = {}
     if callable(getattr(result, "flow_graph", None)):
         graph = result.flow_graph(component) if component is not None else result.flow_graph()
-        kinds = {n: d.get("kind", "body") for n, d in graph.nodes(data=True)}
+        kinds = {n: d.get("kind", n.kind) for n, d in graph.nodes(data=True)}
     elif model is not None:
-        kinds = {b.id: ("frame" if b.is_frame else "body") for b in model.bodies}
+        kinds = {Node(FRAME if b.is_frame else BODY, b.id): (FRAME if b.is_frame else BODY)
+                 for b in model.bodies}
     for flow in flows:
-        for node in (flow.source, flow.target):
-            kinds.setdefault(node, _kind_from_name(node))
-    return {n: (k if k in KINDS else "body") for n, k in kinds.items()}
+        for node in flow.key:
+            kinds.setdefault(node, node.kind)
+    return {n: (k if k in KINDS else BODY) for n, k in kinds.items()}
 
 
 def _kind_from_name(node: str) -> str:
+    """The kind of a node named in a flow list without kinds (ambiguous by nature)."""
     head = node.split(" ")[0]
     if head in (MOTOR, GENERATOR) or node in (LOSS, GROUND):
         return head
     if head in ("mesh", "coupling", "bearing", "drag") and " " in node:
         return head
-    return "body"
+    return BODY
 
 
 def _name(result, model) -> str:
@@ -243,5 +252,5 @@ def _input_power(result, flows: list[Flow]) -> float:
     if power is None and callable(getattr(result, "to_dict", None)):
         power = result.to_dict().get("input_power")
     if power is None:
-        power = sum(f.power for f in flows if f.source.split(" ")[0] == MOTOR)
+        power = sum(f.power for f in flows if f.source_kind == MOTOR)
     return float(power)
