@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import efficiency_arg, load, print_json
+from powergraph.cli.common import load, print_json
 
 METHODS = ("virtual-power", "wang2021")
 
@@ -19,7 +19,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--method", choices=METHODS, default="virtual-power",
                         help="virtual-power (default, any train) or wang2021 (the seed "
                              "paper's split/virtual power method, RV-type trains)")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="override every mesh's basic efficiency")
     parser.set_defaults(handler=run)
 

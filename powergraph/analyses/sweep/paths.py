@@ -19,6 +19,7 @@ A PATH names one number of the model file (docs/format.md):
 """
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
@@ -26,6 +27,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from powergraph.errors import ModelError, UsageError
+from powergraph.model.schema_parts import MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_TEETH, MAX_TORQUE
 from powergraph.model.spec import Model
 
 LINK_FIELDS = ("efficiency", "ratio")
@@ -261,19 +263,25 @@ def broadcast_values(params: Sequence[Parameter],
 def _bad_values(kind: str, array: np.ndarray) -> np.ndarray:
     finite = np.isfinite(array)
     if kind == "teeth":
-        return ~finite | (array < 1) | (array != np.round(array))
+        return ~finite | (array < 1) | (array > MAX_TEETH) | (array != np.round(array))
     if kind == "efficiency":
         return ~finite | (array <= 0) | (array > 1)
     if kind == "ratio":
-        return ~finite | (array == 0)
-    return ~finite
+        return ~finite | (array == 0) | (np.abs(array) > MAX_RATIO)
+    return ~finite | (np.abs(array) > _LIMITS.get(kind, np.inf))
 
 
 def _rule(kind: str) -> str:
-    return {"teeth": "teeth must be whole numbers >= 1",
+    limit = _LIMITS.get(kind)
+    return {"teeth": f"teeth must be whole numbers >= 1 and <= {MAX_TEETH}",
             "efficiency": "efficiency must be in (0, 1]",
-            "ratio": "ratio must be a non-zero finite number"}.get(kind, f"{kind} must be "
-                                                                         "finite")
+            "ratio": f"ratio must be non-zero, at most {MAX_RATIO:g} either way"}.get(
+        kind, f"{kind} must be finite" + (f", at most {limit:g} (SI) either way"
+                                          if limit else ""))
+
+
+#: Largest port values (SI), as in model files.
+_LIMITS = {"speed": MAX_SPEED, "power": MAX_POWER, "torque": MAX_TORQUE}
 
 
 # --- --set PATH=START:STOP:N and grids ------------------------------------------------
@@ -325,9 +333,11 @@ def _range(text: str, spec: str, kind: str, path: str) -> np.ndarray:
     if len(parts) != 3:
         raise UsageError(f"--set {text!r}: a range is START:STOP:N (three fields)")
     start, stop = (_number(text, p, kind, path) for p in parts[:2])
-    if not re.fullmatch(r"\s*\d+\s*", parts[2]) or int(parts[2]) < 1:
+    if not re.fullmatch(r"\s*[0-9]{1,12}\s*", parts[2]) or int(parts[2]) < 1:
         raise UsageError(f"--set {text!r}: N must be a whole number >= 1, got {parts[2]!r}")
     count = int(parts[2])
+    if count > MAX_VARIANTS:
+        raise UsageError(f"--set {text!r}: N must be at most {MAX_VARIANTS:,}")
     if count == 1 and start != stop:
         raise UsageError(f"--set {text!r}: N = 1 needs START = STOP")
     return np.linspace(start, stop, count)
@@ -336,9 +346,13 @@ def _range(text: str, spec: str, kind: str, path: str) -> np.ndarray:
 def _number(text: str, item: str, kind: str, path: str) -> float:
     item = item.strip()
     try:
-        return float(item)
+        value = float(item)
     except ValueError:
         pass
+    else:
+        if not math.isfinite(value):
+            raise UsageError(f"--set {text!r}: {item!r} is not a finite number")
+        return value
     if kind in PORT_FIELDS and item:
         from powergraph.model.units import parse_quantity
 
