@@ -202,22 +202,21 @@ def check_values(param: Parameter, array: np.ndarray) -> np.ndarray:
     Raises
     ------
     ModelError
-        Naming the PATH: teeth that are not whole numbers >= 1, efficiencies outside
-        (0, 1], a zero or non-finite ratio, a non-finite speed, power or torque.
+        Naming the PATH: teeth that are not whole numbers from 1 to MAX_TEETH, efficiencies
+        outside (0, 1], a zero or too large ratio, a speed, power or torque that is not
+        finite or beyond the limits of a model file.
     """
     kind = param.kind
     low = np.minimum.reduce(array, axis=None)
-    if kind == "teeth" and array.dtype.kind in "iu":   # integers: only the lower bound
-        high = low
-    else:
-        high = np.maximum.reduce(array, axis=None)
+    high = np.maximum.reduce(array, axis=None)
     if kind == "teeth":
-        ok = low >= 1 and np.isfinite(high) and (
+        ok = 1 <= low and high <= MAX_TEETH and (
             array.dtype.kind in "iu" or np.array_equal(np.floor(array), array))
     elif kind == "efficiency":
         ok = low > 0 and high <= 1
     else:
-        ok = np.isfinite(low) and np.isfinite(high) and (
+        limit = MAX_RATIO if kind == "ratio" else _LIMITS.get(kind, np.inf)
+        ok = np.isfinite(low) and np.isfinite(high) and -limit <= low and high <= limit and (
             kind != "ratio" or (low > 0 or high < 0 or np.all(array != 0)))
     if not ok:
         bad = _bad_values(kind, np.asarray(array, dtype=float))
