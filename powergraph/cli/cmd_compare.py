@@ -5,7 +5,6 @@ import argparse
 
 from powergraph.cli.common import (
     check_figure_path,
-    efficiency_arg,
     load,
     new_axes,
     print_json,
@@ -23,7 +22,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="print a JSON list of rows")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write a grouped bar chart (.png, .svg or .pdf)")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="compare at equal mesh quality: every mesh at E")
     parser.set_defaults(handler=run)
 

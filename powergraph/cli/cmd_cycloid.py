@@ -11,8 +11,18 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, new_axes, print_json, save_figure, say_wrote
+from powergraph.cli.common import (check_figure_path, new_axes, number_option, print_json,
+                                   save_figure, say_wrote, whole_option)
 from powergraph.errors import UsageError
+
+#: Modules accepted, mm (far beyond any gear, inside what the geometry computes).
+MODULE_RANGE = (1e-6, 1e6)
+#: Profile-shift coefficients accepted: 0 < x < 1, but below 1e-6 the trochoid's
+#: curvature leaves the floating-point range.
+SHIFT_RANGE = (1e-6, 1.0)
+#: A profile error below this fraction of the module is below the resolution of the
+#: contact computation (double precision): give 0 for an exact profile.
+SMALLEST_RELATIVE_ERROR = 1e-12
 
 
 def register(subparsers) -> None:
@@ -23,12 +33,13 @@ def register(subparsers) -> None:
                     "profile is off by D mm along its normal (Csobán 2021). With --fit, "
                     "repeat the paper's study for one module and refit "
                     "a*d + b*d*z1^-1.5.")
-    parser.add_argument("--module", type=float, required=True, metavar="M", help="module, mm")
-    parser.add_argument("--teeth", type=int, metavar="Z1", help="disc teeth z1 (>= 3)")
-    parser.add_argument("--error", type=float, metavar="D", help="profile error d, mm (>= 0)")
-    parser.add_argument("--shift", type=float, default=0.3, metavar="X",
-                        help="profile-shift coefficient x, 0 < x < 1 (default 0.3)")
-    parser.add_argument("--rc", type=float, default=1.0, metavar="RC",
+    parser.add_argument("--module", required=True, metavar="M",
+                        help=f"module, mm ({MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g})")
+    parser.add_argument("--teeth", metavar="Z1", help="disc teeth z1 (>= 3)")
+    parser.add_argument("--error", metavar="D", help="profile error d, mm (>= 0)")
+    parser.add_argument("--shift", default="0.3", metavar="X",
+                        help="profile-shift coefficient x, 1e-6 <= x < 1 (default 0.3)")
+    parser.add_argument("--rc", default="1", metavar="RC",
                         help="pin-radius factor rc*: pin radius = rc*·m (default 1)")
     parser.add_argument("--fit", action="store_true",
                         help="the paper's grid (z1 = 9, 25, 43, 53, 117; IT5…IT9) and refit")
@@ -42,19 +53,28 @@ def register(subparsers) -> None:
 def run(args: argparse.Namespace) -> int:
     """Compute, print, and draw if asked. Bad arguments raise :class:`UsageError`."""
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
+    module = number_option(args.module, "--module", *MODULE_RANGE)
+    shift = number_option(args.shift, "--shift", *SHIFT_RANGE, below=True)
+    rc = number_option(args.rc, "--rc", 0, above=True)
     if args.fit:
         if args.teeth is not None or args.error is not None:
             raise UsageError("--fit runs the paper's grid of teeth and errors: "
                              "give no --teeth or --error")
         from powergraph.analyses.cycloid import fluctuation_study
 
-        result = fluctuation_study(args.module, shift=args.shift, rc=args.rc)
+        result = fluctuation_study(module, shift=shift, rc=rc)
     else:
         if args.teeth is None or args.error is None:
             raise UsageError("give --teeth and --error (or --fit)")
         from powergraph.analyses.cycloid import cycloid_fluctuation
+        from powergraph.analyses.cycloid.geometry import MAX_TEETH
 
-        result = cycloid_fluctuation(args.module, args.teeth, args.error, args.shift, args.rc)
+        teeth = whole_option(args.teeth, "--teeth", 3, MAX_TEETH)
+        error = number_option(args.error, "--error", 0)
+        if 0 < error < SMALLEST_RELATIVE_ERROR * module:
+            raise UsageError(f"--error {args.error}: below {SMALLEST_RELATIVE_ERROR:g} of the "
+                             "module, too small to resolve; give 0 for an exact profile")
+        result = cycloid_fluctuation(module, teeth, error, shift, rc)
     if figure is not None:
         axes = (new_axes((7.5, 6.0), projection="3d") if args.fit else new_axes((7.5, 4.5)))
         ax = result.plot(ax=axes)

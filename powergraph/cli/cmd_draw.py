@@ -8,9 +8,8 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import (check_figure_path, efficiency_arg, load, new_figure, save_figure,
-                                   say_wrote)
-from powergraph.errors import PowerGraphError
+from powergraph.cli.common import (check_figure_path, load, new_figure,
+                                   number_option, save_figure, say_wrote)
 
 METHODS = ("virtual-power", "wang2021")
 DPI_RANGE = (10, 1200)
@@ -31,28 +30,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--method", choices=METHODS, default="virtual-power",
                         help="virtual-power (default) or wang2021 (the seed paper's "
                              "method; RV-type trains)")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="override every mesh's basic efficiency")
-    parser.add_argument("--dpi", type=_dpi, default=150.0, metavar="N",
+    parser.add_argument("--dpi", default="150", metavar="N",
                         help=f"resolution of a PNG (dots per inch, {DPI_RANGE[0]}-"
                              f"{DPI_RANGE[1]}, default 150)")
     parser.set_defaults(handler=run)
 
 
-def _dpi(text: str) -> float:
-    """argparse type of --dpi: a number in DPI_RANGE (a huge figure exhausts memory)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not DPI_RANGE[0] <= value <= DPI_RANGE[1]:
-        raise argparse.ArgumentTypeError(f"must be between {DPI_RANGE[0]} and {DPI_RANGE[1]}, "
-                                         f"got {text}")
-    return value
-
-
 def run(args: argparse.Namespace) -> int:
     target = check_figure_path(args.output)
+    dpi = number_option(args.dpi, "--dpi", *DPI_RANGE)  # a huge figure exhausts memory
     model = load(args.model, args.mesh_efficiency)
     if args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
@@ -68,9 +56,6 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.plot.power_flow import plot_power_flow
 
     ax = plot_power_flow(result, frame=args.frame, view=view, figure=new_figure())
-    try:
-        save_figure(ax.figure, target, dpi=args.dpi)
-    except OSError as exc:
-        raise PowerGraphError(f"cannot write {target}: {exc.strerror or exc}") from exc
+    save_figure(ax.figure, target, dpi=dpi)
     say_wrote(target, f"({view.title})")
     return 0

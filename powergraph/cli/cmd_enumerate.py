@@ -12,7 +12,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from powergraph.cli.common import new_axes, print_json, save_figure, say_wrote, write_atomically
+from powergraph.cli.common import (check_output_folder, new_axes, print_json, save_figure,
+                                   say_wrote, whole_option, write_atomically)
 from powergraph.errors import UsageError
 
 #: Graphs per picture sheet (10 x 10).
@@ -42,11 +43,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run ``enumerate``; returns the exit status (errors propagate to main: exit 2)."""
     from powergraph.analyses.synthesis import enumerate_trains
+    from powergraph.analyses.synthesis.enumerate import MAX_LINKS
 
     if args.links is None:
         raise UsageError("enumerate needs --links N")
-    links, dof = _integer(args.links, "--links"), _integer(args.dof, "--dof")
-    target = _folder(args.out) if args.out else None
+    target = check_output_folder(args.out, "-o") if args.out else None
+    links = whole_option(args.links, "--links", 3, MAX_LINKS)
+    dof = whole_option(args.dof, "--dof", 1, links - 2)
     result = enumerate_trains(links, dof)
     if args.json:
         print_json(result.to_dict())
@@ -59,30 +62,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _integer(text: str, option: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise UsageError(f"{option} {text}: not an integer") from None
-
-
-def _folder(path: str) -> Path:
-    folder = Path(path)
-    if folder.exists() and not folder.is_dir():
-        raise UsageError(f"-o {path}: not a folder")
-    if not folder.exists():
-        if not folder.parent.exists():
-            raise UsageError(f"-o {path}: folder {str(folder.parent)!r} does not exist")
-        folder.mkdir()
-    return folder
-
-
 def _write(folder: Path, result) -> int:
     import yaml
 
     from powergraph.analyses.synthesis.enumerate_models import model_document
     from powergraph.plot.synthesis import plot_graphs
 
+    folder.mkdir(exist_ok=True)
     for index, graph in enumerate(result.graphs, start=1):
         text = yaml.safe_dump(model_document(graph, mesh_efficiency=MESH_EFFICIENCY),
                               sort_keys=False, allow_unicode=True)

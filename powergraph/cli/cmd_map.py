@@ -3,28 +3,36 @@ efficiency over output torque (N·m) × input speed (rpm)."""
 from __future__ import annotations
 
 import argparse
+import math
 
 import numpy as np
 
-from powergraph.cli.common import load, print_json, say_wrote, write_atomically
+from powergraph.cli.common import (check_figure_path, load, number_option, print_json,
+                                   say_wrote, whole_option, write_atomically)
+from powergraph.errors import UsageError
+from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE
 
 
-def span_arg(text: str) -> np.ndarray:
-    """argparse type for ``START:STOP:N`` (N evenly spaced values, ends included).
+#: Output torques (N·m) and input speeds (rpm) taken: those a model file takes.
+TORQUE_LIMIT = MAX_TORQUE
+SPEED_LIMIT = MAX_SPEED * 60 / (2 * math.pi)
+#: Most points along one axis.
+MAX_POINTS = 500
 
-    >>> span_arg("100:400:4").tolist()
+
+def span_option(text: str, option: str, limit: float) -> np.ndarray:
+    """``START:STOP:N`` (N evenly spaced values, ends included) or one value, each within
+    ±``limit``; otherwise a :class:`~powergraph.errors.UsageError` naming ``option``.
+
+    >>> span_option("100:400:4", "--torque", 1e9).tolist()
     [100.0, 200.0, 300.0, 400.0]
     """
     parts = text.split(":")
-    try:
-        if len(parts) == 1:
-            return np.array([float(parts[0])])
-        start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
-    except (ValueError, IndexError):
-        raise argparse.ArgumentTypeError(f"expected START:STOP:N, got {text!r}") from None
-    if len(parts) != 3 or not 1 <= count <= 500:
-        raise argparse.ArgumentTypeError(f"expected START:STOP:N with 1 <= N <= 500, got {text!r}")
-    return np.linspace(start, stop, count)
+    if len(parts) not in (1, 3):
+        raise UsageError(f"{option} {text}: expected START:STOP:N or one value")
+    ends = [number_option(part, option, -limit, limit) for part in parts[:2]]
+    count = whole_option(parts[2], option, 1, MAX_POINTS) if len(parts) == 3 else 1
+    return np.linspace(ends[0], ends[-1], count)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -35,11 +43,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                     "friction depends on the load (friction: {model: iso14179, ...}) or "
                     "bearings carry friction or drag (docs/losses.md).")
     parser.add_argument("model", help="model file (YAML)")
-    parser.add_argument("--torque", type=span_arg, required=True, metavar="A:B:N",
-                        help="output load torques, N·m")
-    parser.add_argument("--speed", type=span_arg, required=True, metavar="C:D:N",
-                        help="input speeds, rpm")
-    parser.add_argument("--rated", type=float, default=None, metavar="T",
+    parser.add_argument("--torque", required=True, metavar="A:B:N",
+                        help=f"output load torques, N·m (up to {TORQUE_LIMIT:g}; N <= {MAX_POINTS})")
+    parser.add_argument("--speed", required=True, metavar="C:D:N",
+                        help=f"input speeds, rpm (up to {SPEED_LIMIT:g} either way; N <= {MAX_POINTS})")
+    parser.add_argument("--rated", default=None, metavar="T",
                         help="rated output torque, N·m (drawn as a line)")
     parser.add_argument("-o", "--output", metavar="FILE", help="write the map (PNG/SVG/PDF)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
@@ -49,11 +57,16 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.efficiency_map import efficiency_map
 
-    result = efficiency_map(load(args.model), args.torque, args.speed, args.rated)
+    target = check_figure_path(args.output) if args.output else None
+    torque = span_option(args.torque, "--torque", TORQUE_LIMIT)
+    speed = span_option(args.speed, "--speed", SPEED_LIMIT)
+    rated = (None if args.rated is None
+             else number_option(args.rated, "--rated", 0, TORQUE_LIMIT, above=True))
+    result = efficiency_map(load(args.model), torque, speed, rated)
     print_json(result.to_dict()) if args.json else print(result.text_report())
-    if args.output:
+    if target is not None:
         ax = result.plot()
-        write_atomically(args.output, lambda tmp: ax.figure.savefig(tmp, dpi=150,
-                                                                    bbox_inches="tight"))
-        say_wrote(args.output, data_on_stdout=args.json)
+        write_atomically(target, lambda tmp: ax.figure.savefig(tmp, dpi=150,
+                                                               bbox_inches="tight"))
+        say_wrote(target, data_on_stdout=args.json)
     return 0

@@ -5,16 +5,15 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import print_json
+from powergraph.cli.common import number_option, print_json, whole_option
 from powergraph.errors import UsageError
+from powergraph.model.schema_parts import MAX_TEETH
 
 
-def _teeth(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    return value
+#: The option that gives each field of the geometry, to name it in messages.
+OPTIONS = {"teeth_1": "Z1", "teeth_2": "Z2", "module": "--module",
+           "pressure_angle_deg": "--pressure-angle", "helix_angle_deg": "--helix",
+           "shift_1": "--shift X1", "shift_2": "--shift X2", "addendum": "--addendum"}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -23,20 +22,20 @@ def register(sub: argparse._SubParsersAction) -> None:
         description="Contact ratio, addendum contact ratios and Ohlendorf's tooth loss "
                     "factor H_V of an involute pair; with --mu its basic efficiency "
                     "1 - mu*H_V.")
-    parser.add_argument("z1", type=_teeth, help="teeth of the pinion (external)")
-    parser.add_argument("z2", type=_teeth, help="teeth of the wheel")
+    parser.add_argument("z1", help="teeth of the pinion (external)")
+    parser.add_argument("z2", help="teeth of the wheel")
     parser.add_argument("--internal", action="store_true", help="the wheel is an internal gear")
-    parser.add_argument("--module", type=float, default=1.0, metavar="M",
+    parser.add_argument("--module", default="1", metavar="M",
                         help="normal module, mm (default 1)")
-    parser.add_argument("--pressure-angle", type=float, default=20.0, metavar="DEG",
+    parser.add_argument("--pressure-angle", default="20", metavar="DEG",
                         help="normal pressure angle, degrees (default 20)")
-    parser.add_argument("--helix", type=float, default=0.0, metavar="DEG",
+    parser.add_argument("--helix", default="0", metavar="DEG",
                         help="helix angle, degrees (default 0)")
-    parser.add_argument("--shift", type=float, nargs=2, default=(0.0, 0.0),
+    parser.add_argument("--shift", nargs=2, default=("0", "0"),
                         metavar=("X1", "X2"), help="profile shift coefficients (default 0 0)")
-    parser.add_argument("--addendum", type=float, default=1.0, metavar="HA",
+    parser.add_argument("--addendum", default="1", metavar="HA",
                         help="addendum coefficient (default 1)")
-    parser.add_argument("--mu", type=float, default=None, metavar="MU",
+    parser.add_argument("--mu", default=None, metavar="MU",
                         help="mean coefficient of friction: gives the basic efficiency")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
     parser.set_defaults(handler=run)
@@ -46,14 +45,22 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss
     from powergraph.errors import ModelError
 
-    geometry = MeshGeometry(teeth_1=args.z1, teeth_2=args.z2, internal=args.internal,
-                            module=args.module, pressure_angle_deg=args.pressure_angle,
-                            helix_angle_deg=args.helix, shift_1=args.shift[0],
-                            shift_2=args.shift[1], addendum=args.addendum)
+    geometry = MeshGeometry(
+        teeth_1=whole_option(args.z1, "Z1", 3, MAX_TEETH),
+        teeth_2=whole_option(args.z2, "Z2", 3, MAX_TEETH), internal=args.internal,
+        module=number_option(args.module, "--module"),
+        pressure_angle_deg=number_option(args.pressure_angle, "--pressure-angle"),
+        helix_angle_deg=number_option(args.helix, "--helix"),
+        shift_1=number_option(args.shift[0], "--shift X1"),
+        shift_2=number_option(args.shift[1], "--shift X2"),
+        addendum=number_option(args.addendum, "--addendum"))
+    mu = None if args.mu is None else number_option(args.mu, "--mu")
     try:
-        result = mesh_loss(geometry, mu=args.mu, strict=False)
+        result = mesh_loss(geometry, mu=mu, strict=False)
     except ModelError as exc:
-        raise UsageError(str(exc)) from None
+        field = exc.message.split(" ", 1)[0]
+        place = OPTIONS.get(field, "--mu" if "friction" in exc.message else None)
+        raise UsageError(exc.message, place) from None
     if args.json:
         print_json(result.to_dict())
     else:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import add_strict, efficiency_arg, load, print_json, refuse_caveats
+from powergraph.cli.common import add_strict, load, print_json, refuse_caveats
 
 METHODS = ("virtual-power", "wang2021")
 
@@ -21,7 +21,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--method", choices=METHODS, default="virtual-power",
                         help="virtual-power (default, any train) or wang2021 (the seed "
                              "paper's split/virtual power method, RV-type trains)")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="override every mesh's basic efficiency")
     add_strict(parser)
     _result_options(parser)

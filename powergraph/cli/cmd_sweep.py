@@ -12,9 +12,9 @@ import argparse
 import io
 import sys
 
-from powergraph.cli.common import (add_cluster_arguments, check_figure_path, cluster_options,
-                                   efficiency_arg, load, new_figure, save_figure, say_wrote,
-                                   write_atomically)
+from powergraph.cli.common import (add_cluster_arguments, check_figure_path, check_output_file,
+                                   cluster_options, load, new_figure, save_figure,
+                                   say_wrote, write_atomically)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -38,7 +38,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                              "per value of the others (.png/.svg/.pdf)")
     parser.add_argument("--all-columns", action="store_true",
                         help="add powers, losses and flags to the CSV")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="set every mesh's basic efficiency first")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     add_cluster_arguments(parser)
@@ -50,6 +50,8 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.sweep import cartesian, compile_sweep, parse_sets
 
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
+    if args.output:
+        check_output_file(args.output, "-o")
     model = load(args.model, args.mesh_efficiency)
     grid = cartesian(parse_sets(model, args.sets))
     cluster = cluster_options(args)

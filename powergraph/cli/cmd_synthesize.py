@@ -12,9 +12,11 @@ import argparse
 import re
 from pathlib import Path
 
-from powergraph.cli.common import (add_cluster_arguments, cluster_options, number_option,
-                                   print_json, whole_option)
+from powergraph.cli.common import (add_cluster_arguments, check_output_folder, cluster_options,
+                                   efficiency_option, number_option, print_json,
+                                   whole_option)
 from powergraph.errors import UsageError
+from powergraph.model.schema_parts import MAX_RATIO
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -66,7 +68,7 @@ def parse_teeth(text: str) -> tuple[int, int]:
     >>> parse_teeth("12:120")
     (12, 120)
     """
-    match = re.fullmatch(r"\s*(\d+)\s*:\s*(\d+)\s*", text)
+    match = re.fullmatch(r"\s*([0-9]{1,6})\s*:\s*([0-9]{1,6})\s*", text)
     if not match:
         raise UsageError(f"--teeth {text}: expected LOW:HIGH, e.g. 12:120")
     low, high = int(match[1]), int(match[2])
@@ -76,12 +78,11 @@ def parse_teeth(text: str) -> tuple[int, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    ratio = number_option(args.ratio, "--ratio")
+    target = check_output_folder(args.output, "-o") if args.output else None
+    ratio = number_option(args.ratio, "--ratio", -MAX_RATIO, MAX_RATIO)
     if ratio == 0:
         raise UsageError("--ratio 0: a ratio cannot be zero")
-    efficiency = number_option(args.mesh_efficiency, "--mesh-efficiency")
-    if not 0 < efficiency <= 1:
-        raise UsageError(f"--mesh-efficiency {args.mesh_efficiency}: must be in (0, 1]")
+    efficiency = efficiency_option(args.mesh_efficiency)
     options = dict(
         tolerance=parse_tolerance(args.tolerance),
         max_links=whole_option(args.max_links, "--max-links", 3, 8),
@@ -89,7 +90,6 @@ def run(args: argparse.Namespace) -> int:
         mesh_efficiency=efficiency, top=whole_option(args.top, "--top", 1, 1000),
         max_grid=whole_option(args.max_grid, "--max-grid", 1, 10**12),
         **cluster_options(args))
-    target = _output_dir(args.output) if args.output else None
     from powergraph.analyses.synthesis.synthesize import synthesize
 
     result = synthesize(ratio, **options)
@@ -116,15 +116,6 @@ def file_stem(name: str, limit: int = 80) -> str:
             break
         stem += "_" + word
     return stem
-
-
-def _output_dir(text: str) -> Path:
-    path = Path(text)
-    if path.exists() and not path.is_dir():
-        raise UsageError(f"-o {text}: exists and is not a folder")
-    if not path.exists() and not path.parent.exists():
-        raise UsageError(f"-o {text}: folder {str(path.parent)!r} does not exist")
-    return path
 
 
 def _write(result, target: Path, quiet: bool) -> None:

@@ -8,36 +8,21 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, load, print_json, say_wrote, write_atomically
+from powergraph.cli.common import (check_figure_path, load, print_json, say_wrote,
+                                   whole_option, write_atomically)
+from powergraph.errors import UsageError
 
 
-def _count(text: str) -> int:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value.is_integer() or value < 2:
-        raise argparse.ArgumentTypeError(f"must be a whole number >= 2, got {text}")
-    return int(value)
-
-
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
-    return value
+#: Largest --samples (memory grows with it) and --sobol-samples; largest --seed.
+MAX_SAMPLES = 10**7
+MAX_SOBOL = 2**20
+MAX_SEED = 2**63 - 1
 
 
 def _sobol(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    value = whole_option(text, "--sobol-samples", 0, MAX_SOBOL)
     if value != 0 and (value < 2 or value & (value - 1)):
-        raise argparse.ArgumentTypeError(f"must be a power of 2 (or 0: none), got {text}")
+        raise UsageError(f"--sobol-samples {text}: must be a power of 2 (or 0: none)")
     return value
 
 
@@ -52,16 +37,16 @@ def register(subparsers) -> None:
                     "yield of each --spec with its 95 %% Wilson score interval, and the "
                     "first-order and total Sobol indices of every toleranced PATH (SALib).")
     parser.add_argument("model", help="YAML model file with a tolerances: block")
-    parser.add_argument("--samples", type=_count, default=100_000, metavar="N",
-                        help="Monte Carlo units (default 100000; 1e6 is written 1000000)")
-    parser.add_argument("--seed", type=_seed, default=None, metavar="S",
+    parser.add_argument("--samples", default="100000", metavar="N",
+                        help=f"Monte Carlo units, 2 to {MAX_SAMPLES:.0e} (default 100000)")
+    parser.add_argument("--seed", default=None, metavar="S",
                         help="random seed (default: fresh, reported)")
     parser.add_argument("--spec", action="append", default=[], metavar="SPEC",
                         help='specification, e.g. "lost_motion<=1arcmin", '
                              '"fluctuation<=0.5%%", "efficiency>=0.85"; repeatable')
-    parser.add_argument("--sobol-samples", type=_sobol, default=4096, metavar="N",
+    parser.add_argument("--sobol-samples", default="4096", metavar="N",
                         help="base size N of the Sobol design, a power of 2 (N*(D+2) "
-                             "evaluations; 0: no sensitivities; default 4096)")
+                             "evaluations; 0: no sensitivities; at most 2^20; default 4096)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("-o", "--output", metavar="FILE.png",
                         help="write the histograms and the tornado chart (.png/.svg/.pdf)")
@@ -73,11 +58,14 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.tolerance import parse_spec, tolerance_analysis
 
     target = check_figure_path(args.output, "-o") if args.output else None
+    samples = whole_option(args.samples, "--samples", 2, MAX_SAMPLES)
+    seed = None if args.seed is None else whole_option(args.seed, "--seed", 0, MAX_SEED)
+    sobol_samples = _sobol(args.sobol_samples)
     specs = [parse_spec(text) for text in args.spec]
     model = load(args.model)
     progress = False if args.json else None   # None: a bar on a terminal, long runs
-    result = tolerance_analysis(model, samples=args.samples, seed=args.seed, specs=specs,
-                                sobol_samples=args.sobol_samples, progress=progress)
+    result = tolerance_analysis(model, samples=samples, seed=seed, specs=specs,
+                                sobol_samples=sobol_samples, progress=progress)
     if target is not None:
         _write_plot(result, target)
     if args.json:

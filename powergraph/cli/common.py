@@ -6,14 +6,24 @@ import contextlib
 import json
 import math
 import os
+import re
 import sys
 import tempfile
 import warnings
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Iterator, NoReturn
 
-from powergraph.errors import UsageError
+from powergraph.errors import PowerGraphError, UsageError
 from powergraph.result import aligned_table  # noqa: F401  (used by the commands)
+
+
+class CommandParser(argparse.ArgumentParser):
+    """argparse's parser, but a mistake in the arguments is one line (no usage block):
+    ``powergraph: error: argument --dpi: expected one argument (see powergraph draw -h)``,
+    exit status 2, like every other bad argument."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"powergraph: error: {message} (see {self.prog} -h)\n")
 
 
 def print_json(data: Any) -> None:
@@ -32,23 +42,15 @@ def _finite(data: Any) -> Any:
     return data
 
 
-def efficiency_arg(text: str) -> float:
-    """argparse type for a basic mesh efficiency in (0, 1]."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not (0.0 < value <= 1.0):
-        raise argparse.ArgumentTypeError(f"must be in (0, 1], got {text}")
-    return value
-
-
-def load(path: str, mesh_efficiency: float | None = None):
-    """Load a model file, applying ``--mesh-efficiency`` if given."""
+def load(path: str, mesh_efficiency: str | None = None):
+    """Load a model file, applying the text of ``--mesh-efficiency`` if given (checked
+    first: a bad value fails before the file is read)."""
     from powergraph.model import load_model
 
-    model = load_model(path)
-    return model.with_mesh_efficiency(mesh_efficiency) if mesh_efficiency is not None else model
+    if mesh_efficiency is None:
+        return load_model(path)
+    efficiency = efficiency_option(mesh_efficiency)
+    return load_model(path).with_mesh_efficiency(efficiency)
 
 
 def add_strict(parser: argparse.ArgumentParser) -> None:
@@ -73,17 +75,86 @@ def print_caveats(caveats: Any) -> None:
 
 
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+#: Characters of the target's name kept in the name of its temporary file.
+_TEMP_STEM = 40
+
+
+def check_output_file(path: str, option: str, suffixes: tuple[str, ...] = ()) -> Path:
+    """Refuse, before any work, a file that the command could not write.
+
+    The folder must exist and take a new file (the check creates and removes the very
+    temporary file :func:`write_atomically` will use); the path must not be a folder;
+    its suffix, if ``suffixes`` are given, one of them. Otherwise a
+    :class:`~powergraph.errors.UsageError` naming ``option`` (exit 2).
+
+    >>> check_output_file("out.csv", "-o").name
+    'out.csv'
+    >>> check_output_file("no/such/folder/out.csv", "-o")
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.UsageError: -o: folder 'no/such/folder' does not exist
+    """
+    if not path.strip() or "\x00" in path:
+        raise UsageError(f"{option}: {path!r} is not a file name")
+    target = Path(path)
+    if suffixes and target.suffix.lower() not in suffixes:
+        raise UsageError(f"{option}: the suffix must be one of {', '.join(suffixes)} "
+                         f"(got {path!r})")
+    if os.path.isdir(target) or path.endswith(("/", os.sep)) or target.name in ("", ".", ".."):
+        raise UsageError(f"{option}: {path!r} is a folder, not a file")
+    _check_folder(target.parent, option, target.name)
+    return target
 
 
 def check_figure_path(path: str, option: str = "-o") -> Path:
-    """A figure path must end in .png, .svg or .pdf and its folder must exist."""
-    target = Path(path)
-    if target.suffix.lower() not in FIGURE_SUFFIXES:
-        raise UsageError(f"{option} {path}: the suffix must be one of "
-                         f"{', '.join(FIGURE_SUFFIXES)}")
-    if not target.parent.exists():
-        raise UsageError(f"{option} {path}: folder {str(target.parent)!r} does not exist")
-    return target
+    """:func:`check_output_file` for a figure: .png, .svg or .pdf."""
+    return check_output_file(path, option, FIGURE_SUFFIXES)
+
+
+def check_output_folder(path: str, option: str) -> Path:
+    """A folder the command may write files into: an existing folder, or a new one
+    whose parent folder exists (created by the writer, not here). Otherwise a
+    :class:`~powergraph.errors.UsageError` naming ``option`` (exit 2).
+
+    >>> check_output_folder(".", "-o").is_dir()
+    True
+    """
+    if not path.strip() or "\x00" in path:
+        raise UsageError(f"{option}: {path!r} is not a folder name")
+    folder = Path(path)
+    exists = os.path.lexists(folder)   # os.path never raises (a name too long...)
+    if exists and not os.path.isdir(folder):
+        raise UsageError(f"{option}: {path!r} exists and is not a folder")
+    _check_folder(folder if exists else folder.parent, option, "x.yaml")
+    return folder
+
+
+def _check_folder(folder: Path, option: str, name: str) -> None:
+    """``folder`` exists, is a folder and takes the temporary file of ``name``."""
+    shown = str(folder)
+    if not os.path.exists(folder):
+        raise UsageError(f"{option}: folder {shown!r} does not exist")
+    if not os.path.isdir(folder):
+        raise UsageError(f"{option}: {shown!r} is not a folder")
+    try:
+        limit = os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        limit = 255
+    if len(os.fsencode(name)) > limit:
+        raise UsageError(f"{option}: the file name is longer than {limit} bytes")
+    try:
+        os.unlink(_temporary_file(folder / name))
+    except OSError as exc:
+        raise UsageError(f"{option}: cannot write in folder {shown!r}: "
+                         f"{exc.strerror or exc}") from None
+
+
+def _temporary_file(target: Path) -> str:
+    """A new empty file beside ``target``, of the same suffix (closed; the caller owns it)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.stem[:_TEMP_STEM]}.", suffix=target.suffix,
+                               dir=target.parent)
+    os.close(fd)
+    return tmp
 
 
 def say_wrote(path: str | Path, detail: str = "", data_on_stdout: bool = False) -> None:
@@ -101,23 +172,31 @@ def write_atomically(path: str | Path, write: Callable[[str], None]) -> None:
     """Call ``write(tmp_path)`` then rename onto ``path``: never a half-written file.
 
     The temporary file has the same suffix, so writers that pick a format by suffix
-    (matplotlib's ``savefig``) still work.
+    (matplotlib's ``savefig``) still work. A file system error (disk full, folder gone)
+    is a :class:`~powergraph.errors.PowerGraphError` naming the file (exit 1).
     """
     target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.stem}.", suffix=target.suffix,
-                               dir=target.parent or ".")
-    os.close(fd)
+    try:
+        tmp = _temporary_file(target)
+    except OSError as exc:
+        raise PowerGraphError(f"cannot write {str(target)!r}: {exc.strerror or exc}") from None
     try:
         write(tmp)
         umask = os.umask(0)
         os.umask(umask)
         os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; a figure is an ordinary file
         os.replace(tmp, target)
+    except OSError as exc:
+        _remove(tmp)
+        raise PowerGraphError(f"cannot write {str(target)!r}: {exc.strerror or exc}") from None
     except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        _remove(tmp)
         raise
 
+
+def _remove(path: str) -> None:
+    if os.path.exists(path):
+        os.unlink(path)
 
 # --- figures: the command line writes files with matplotlib's object-oriented API -------
 def new_figure(figsize: tuple[float, float] = (6.4, 4.8)):
@@ -205,29 +284,82 @@ def cluster_options(args: Any) -> dict[str, Any]:
     return {"workers": workers, "scheduler": args.scheduler}
 
 
-def number_option(text: str, option: str) -> float:
-    """A finite number given to ``option``; otherwise a
-    :class:`~powergraph.errors.UsageError` naming the option (exit 2).
+def number_option(text: str, option: str, low: float | None = None,
+                  high: float | None = None, *, above: bool = False,
+                  below: bool = False) -> float:
+    """The finite number given to ``option``, from ``low`` to ``high`` (above ``low`` with
+    ``above=True``, below ``high`` with ``below=True``); otherwise a :class:`~powergraph.errors.UsageError` naming the option
+    (exit 2). ASCII decimal text only (``2.5``, ``-1e3``), and no subnormal number (0 <
+    \\|x\\| < 2.2e-308): nothing the commands compute with is that small, and dividing by
+    one overflows.
 
     >>> number_option("2.5", "--ratio")
     2.5
+    >>> number_option("1e-320", "--error")
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.UsageError: --error 1e-320: too close to zero (a subnormal number)
     """
+    shown = _shown(text)
     try:
+        if not text.isascii():
+            raise ValueError(text)
         value = float(text)
     except ValueError:
-        raise UsageError(f"{option} {text}: not a number") from None
+        raise UsageError(f"{option} {shown}: not a number") from None
     if not math.isfinite(value):
-        raise UsageError(f"{option} {text}: must be finite")
+        raise UsageError(f"{option} {shown}: must be finite")
+    if value != 0 and abs(value) < sys.float_info.min:
+        raise UsageError(f"{option} {shown}: too close to zero (a subnormal number)")
+    too_low = low is not None and (value <= low if above else value < low)
+    too_high = high is not None and (value >= high if below else value > high)
+    if too_low or too_high:
+        raise UsageError(f"{option} {shown}: must be {_range(low, high, above, below)}")
     return value
 
 
 def whole_option(text: str, option: str, low: int, high: int) -> int:
-    """A whole number from ``low`` to ``high`` given to ``option`` (exit 2 otherwise).
+    """A whole number from ``low`` to ``high`` given to ``option`` (exit 2 otherwise):
+    digits (read exactly, however large) or a number such as ``1e6``.
 
-    >>> whole_option("4", "--workers", 1, 1024)
-    4
+    >>> whole_option("4", "--workers", 1, 1024), whole_option("1e3", "--top", 1, 1000)
+    (4, 1000)
     """
-    value = number_option(text, option)
-    if not value.is_integer() or not low <= value <= high:
-        raise UsageError(f"{option} {text}: must be a whole number from {low} to {high}")
+    digits = text.strip()
+    if re.fullmatch(r"[+-]?[0-9]{1,40}", digits):
+        value: float = int(digits)
+    else:
+        try:
+            value = number_option(text, option)
+        except UsageError:
+            value = math.nan
+    if not float(value).is_integer() or not low <= value <= high:
+        raise UsageError(f"{option} {_shown(text)}: must be a whole number from {low} to {high}")
     return int(value)
+
+
+#: Range of a basic mesh efficiency given on the command line: below 1e-6 the losses
+#: of a train of a few meshes leave the floating-point range.
+EFFICIENCY_RANGE = (1e-6, 1.0)
+
+
+def efficiency_option(text: str, option: str = "--mesh-efficiency") -> float:
+    """A basic mesh efficiency from 1e-6 to 1 given to ``option`` (exit 2 otherwise).
+
+    >>> efficiency_option("0.98")
+    0.98
+    """
+    return number_option(text, option, *EFFICIENCY_RANGE)
+
+
+def _range(low: float | None, high: float | None, above: bool, below: bool) -> str:
+    bounds = ([f"{'above' if above else 'at least'} {low:g}"] if low is not None else []) + \
+             ([f"{'below' if below else 'at most'} {high:g}"] if high is not None else [])
+    return " and ".join(bounds)
+
+
+def _shown(text: str, limit: int = 40) -> str:
+    """``text`` as typed if short and plain, else its ``repr`` cut to ``limit`` characters."""
+    if text and text.isprintable() and text.strip() == text and len(text) <= limit:
+        return text
+    return repr(text) if len(text) <= limit else repr(text[:limit]) + "..."

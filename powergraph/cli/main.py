@@ -11,34 +11,39 @@ import importlib
 import sys
 import warnings
 
+from powergraph.cli.common import CommandParser, number_option
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 
 #: Command modules, in the order ``--help`` lists them. Each has register() and run().
 COMMANDS = ("solve", "check", "draw", "compare", "backlash", "cycloid", "volume", "sweep",
             "formula", "schema", "tolerance", "mesh", "map", "enumerate", "synthesize")
 _SIZE_SUFFIXES = {"": 1, "k": 10**3, "m": 10**6, "g": 10**9}
+#: Largest --max-model-size: a file of a petabyte is no model.
+_SIZE_LIMIT = 10**15
 
 
-def _size(text: str) -> int:
-    """argparse type of --max-model-size: bytes, optionally with k, M or G (powers of 1000)."""
+def parse_size(text: str) -> int:
+    """--max-model-size: bytes, optionally with k, M or G (powers of 1000).
+
+    >>> parse_size("20M"), parse_size("1.5k")
+    (20000000, 1500)
+    """
     number, suffix = (text[:-1], text[-1].lower()) if text[-1:].isalpha() else (text, "")
-    try:
-        value = int(float(number) * _SIZE_SUFFIXES[suffix])
-    except (KeyError, ValueError, OverflowError):
-        raise argparse.ArgumentTypeError(f"not a size in bytes: {text!r} (e.g. 20M)") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1 byte, got {text}")
-    return value
+    if suffix not in _SIZE_SUFFIXES:
+        raise UsageError(f"--max-model-size {text}: not a size in bytes (e.g. 20M)")
+    scale = _SIZE_SUFFIXES[suffix]
+    value = number_option(number, "--max-model-size", 1 / scale, _SIZE_LIMIT / scale)
+    return max(1, int(value * scale))
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = CommandParser(
         prog="powergraph",
         description="Power flow, losses and efficiency of gear trains described as graphs.")
     from powergraph import __version__
 
     parser.add_argument("--version", action="version", version=f"powergraph {__version__}")
-    parser.add_argument("--max-model-size", type=_size, metavar="BYTES",
+    parser.add_argument("--max-model-size", metavar="BYTES",
                         help="refuse model files larger than this (default 10M, or the "
                              "environment variable POWERGRAPH_MAX_MODEL_BYTES)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -89,7 +94,8 @@ def _run(args: argparse.Namespace) -> int:
     from powergraph.cli.common import glyph_notices
     from powergraph.model.yaml_loader import size_limit
 
-    with size_limit(args.max_model_size), warnings.catch_warnings(), glyph_notices():
+    limit = None if args.max_model_size is None else parse_size(args.max_model_size)
+    with size_limit(limit), warnings.catch_warnings(), glyph_notices():
         warnings.simplefilter("error", RuntimeWarning)
         return args.handler(args)
 

@@ -107,6 +107,11 @@ def test_backdriven_self_locking_and_locking_are_reported(capsys, tmp_path) -> N
     (["--set", "links.1.efficiency=0.9:1.2:3"], "links.1.efficiency: efficiency must be"),
     (["--set", "components.1.teeth=10:13:3"], "components.1.teeth: teeth must be whole"),
     (["--set", "components.9.teeth=10:12:3"], "unknown component '9'"),
+    # these three once ended in "numerical problem" (exit 1) or a numpy traceback
+    (["--set", "components.1.teeth=1e308"], "components.1.teeth: teeth must be whole"),
+    (["--set", "links.1.efficiency=0.9:1:999999999999"], "N must be at most"),
+    (["--set", "links.1.efficiency=-inf:1:3"], "not a finite number"),
+    (["--set", "links.1.efficiency=0.9", "-o", "missing/x.csv"], "-o: folder 'missing'"),
     (["--set", "links.2.efficiency=0.9:1:2"], "fixed link"),
     (["--set", "bogus=1"], "must start with"),
     (["--set", "links.1.efficiency=0.9", "--set", "links.1.efficiency=1"], "given twice"),

@@ -4,6 +4,7 @@ with their Cartesian grid.
 """
 from __future__ import annotations
 
+import math
 import re
 from typing import Any, Mapping, Sequence
 
@@ -11,6 +12,8 @@ import numpy as np
 
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.paths import LINK_FIELDS, PORT_FIELDS, Parameter, parse_path
+from powergraph.model.schema_parts import (MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_TEETH,
+                                           MAX_TORQUE)
 from powergraph.model.spec import Model
 
 __all__ = ["LINK_FIELDS", "PORT_FIELDS", "Parameter", "as_array", "broadcast_values",
@@ -75,22 +78,21 @@ def check_values(param: Parameter, array: np.ndarray) -> np.ndarray:
     Raises
     ------
     ModelError
-        Naming the PATH: teeth that are not whole numbers >= 1, efficiencies outside
-        (0, 1], a zero or non-finite ratio, a non-finite speed, power or torque.
+        Naming the PATH: teeth that are not whole numbers from 1 to MAX_TEETH, efficiencies
+        outside (0, 1], a zero or too large ratio, a speed, power or torque that is not
+        finite or beyond the limits of a model file.
     """
     kind = param.kind
     low = np.minimum.reduce(array, axis=None)
-    if kind == "teeth" and array.dtype.kind in "iu":   # integers: only the lower bound
-        high = low
-    else:
-        high = np.maximum.reduce(array, axis=None)
+    high = np.maximum.reduce(array, axis=None)
     if kind == "teeth":
-        ok = low >= 1 and np.isfinite(high) and (
+        ok = 1 <= low and high <= MAX_TEETH and (
             array.dtype.kind in "iu" or np.array_equal(np.floor(array), array))
     elif kind == "efficiency":
         ok = low > 0 and high <= 1
     else:
-        ok = np.isfinite(low) and np.isfinite(high) and (
+        limit = MAX_RATIO if kind == "ratio" else _LIMITS.get(kind, np.inf)
+        ok = np.isfinite(low) and np.isfinite(high) and -limit <= low and high <= limit and (
             kind != "ratio" or (low > 0 or high < 0 or np.all(array != 0)))
     if not ok:
         bad = _bad_values(kind, np.asarray(array, dtype=float))
@@ -136,19 +138,25 @@ def broadcast_values(params: Sequence[Parameter],
 def _bad_values(kind: str, array: np.ndarray) -> np.ndarray:
     finite = np.isfinite(array)
     if kind == "teeth":
-        return ~finite | (array < 1) | (array != np.round(array))
+        return ~finite | (array < 1) | (array > MAX_TEETH) | (array != np.round(array))
     if kind == "efficiency":
         return ~finite | (array <= 0) | (array > 1)
     if kind == "ratio":
-        return ~finite | (array == 0)
-    return ~finite
+        return ~finite | (array == 0) | (np.abs(array) > MAX_RATIO)
+    return ~finite | (np.abs(array) > _LIMITS.get(kind, np.inf))
 
 
 def _rule(kind: str) -> str:
-    return {"teeth": "teeth must be whole numbers >= 1",
+    limit = _LIMITS.get(kind)
+    return {"teeth": f"teeth must be whole numbers >= 1 and <= {MAX_TEETH}",
             "efficiency": "efficiency must be in (0, 1]",
-            "ratio": "ratio must be a non-zero finite number"}.get(kind, f"{kind} must be "
-                                                                         "finite")
+            "ratio": f"ratio must be non-zero, at most {MAX_RATIO:g} either way"}.get(
+        kind, f"{kind} must be finite" + (f", at most {limit:g} (SI) either way"
+                                          if limit else ""))
+
+
+#: Largest port values (SI), as in model files.
+_LIMITS = {"speed": MAX_SPEED, "power": MAX_POWER, "torque": MAX_TORQUE}
 
 
 # --- --set PATH=START:STOP:N and grids ------------------------------------------------
@@ -200,9 +208,11 @@ def _range(text: str, spec: str, kind: str, path: str) -> np.ndarray:
     if len(parts) != 3:
         raise UsageError(f"--set {text!r}: a range is START:STOP:N (three fields)")
     start, stop = (_number(text, p, kind, path) for p in parts[:2])
-    if not re.fullmatch(r"\s*\d+\s*", parts[2]) or int(parts[2]) < 1:
+    if not re.fullmatch(r"\s*[0-9]{1,12}\s*", parts[2]) or int(parts[2]) < 1:
         raise UsageError(f"--set {text!r}: N must be a whole number >= 1, got {parts[2]!r}")
     count = int(parts[2])
+    if count > MAX_VARIANTS:
+        raise UsageError(f"--set {text!r}: N must be at most {MAX_VARIANTS:,}")
     if count == 1 and start != stop:
         raise UsageError(f"--set {text!r}: N = 1 needs START = STOP")
     return np.linspace(start, stop, count)
@@ -211,9 +221,13 @@ def _range(text: str, spec: str, kind: str, path: str) -> np.ndarray:
 def _number(text: str, item: str, kind: str, path: str) -> float:
     item = item.strip()
     try:
-        return float(item)
+        value = float(item)
     except ValueError:
         pass
+    else:
+        if not math.isfinite(value):
+            raise UsageError(f"--set {text!r}: {item!r} is not a finite number")
+        return value
     if kind in PORT_FIELDS and item:
         from powergraph.model.units import parse_quantity
 
