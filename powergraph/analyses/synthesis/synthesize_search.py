@@ -31,7 +31,7 @@ import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.teeth import Layout, layouts
-from powergraph.gears.planetary import assembles, relative_turns
+from powergraph.gears.planetary import assembles, planets_meet, relative_turns
 
 #: Grid points evaluated at once (bounds the memory of a search).
 SUB_CHUNK = 1 << 17
@@ -171,8 +171,7 @@ def joint_conditions(layout: Layout, flat: np.ndarray) -> np.ndarray:
     for k in pp:
         u, v, _ = graph.gear_pairs[k]
         if u in centres and v in centres:
-            reach = z[(k, 0)] + z[(k, 1)]
-            ok &= (np.abs(centres[u] - centres[v]) < reach) & (reach < centres[u] + centres[v])
+            ok &= planets_meet(centres[u], centres[v], z[(k, 0)], z[(k, 1)])
     for cluster in _clusters(layout):
         coax, coefficients = _cluster_meshes(layout, cluster, z)
         phased = any(st.phased(p) for p in cluster)
