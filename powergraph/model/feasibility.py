@@ -85,14 +85,18 @@ def _planetary_sets(model: Any) -> dict[str, PlanetarySet]:
         body = model.body_of[link.carrier]
         if model.components[link.carrier].count > 1:
             continue                                     # a crank: eccentric, not 2K-H
-        sets.setdefault(body, PlanetarySet(body)).meshes.append(link)
+        if body not in sets:
+            sets[body] = PlanetarySet(body)
+        sets[body].meshes.append(link)
     for pset in sets.values():
         for link in pset.meshes:
-            a, b = (model.components[x] for x in link.between)
+            a, b = model.components[link.between[0]], model.components[link.between[1]]
             for gear, other in ((a, b), (b, a)):
                 if gear.count > 1 or (other.internal and not gear.internal):
                     pset.planets.add(model.body_of[gear.id])
         pset.planets -= coupled
+        if not pset.planets:
+            continue
         pset.central = {x for link in pset.meshes for x in link.between
                         if model.body_of[x] not in pset.planets
                         and model.body_of[x] not in coupled}
