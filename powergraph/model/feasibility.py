@@ -292,7 +292,9 @@ def _assembly_words(central: list, coefficients: list[int], n: int, phased: bool
         if a1 == -a2:                         # a simple planet between sun and ring
             return f"({z1} + {z2})/{n} = {(z1 + z2) / n:.4g} is not whole ({names}): {tail}"
         if a1 == a2:                          # a double planet between sun and ring
-            return f"({z2} − {z1})/{n} = {(z2 - z1) / n:.4g} is not whole ({names}): {tail}"
+            big, small = max(z1, z2), min(z1, z2)
+            return (f"({big} − {small})/{n} = {(big - small) / n:.4g} is not whole ({names}): "
+                    f"{tail}")
         value = (a2 * z1 - a1 * z2) / (n * math.gcd(a1, a2))
         return (f"({a2}·{z1} − ({a1})·{z2})/({n}·gcd({a1}, {a2})) = {value:.4g} is not whole "
                 f"({names}): {tail}")
