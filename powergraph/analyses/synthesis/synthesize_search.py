@@ -204,8 +204,8 @@ def _clusters(layout: Layout) -> list[list[int]]:
 
 def _cluster_meshes(layout: Layout, cluster: list[int], z: dict) -> tuple[list, list]:
     """Coaxial teeth and integer coefficients ``a_j`` of a planet cluster (see
-    :func:`~powergraph.analyses.synthesis.teeth.assembles`): each planet's turn is
-    ``num/den`` times the first one's, through the planet-planet meshes."""
+    :func:`~powergraph.gears.planetary.assembles`): each planet's turn is
+    ``num/den`` times the first one's (:func:`~powergraph.gears.planetary.relative_turns`)."""
     st, graph = layout.structure, layout.graph
     ones = np.ones_like(z[next(iter(z))])
     pp = [(u, v, z[(k, 0)], z[(k, 1)]) for k, (u, v, _) in enumerate(graph.gear_pairs)
