@@ -1,5 +1,5 @@
 """The geometric conditions of a planetary set: coaxiality, equal-spacing assembly,
-neighbouring planets' clearance, rack-cut undercut.
+meshing planets' reach, neighbouring planets' clearance, rack-cut undercut.
 
 One copy of these conditions, vectorised with numpy (an array of tooth numbers gives an
 array of answers): the tooth-number synthesis filters whole grids with them
@@ -122,6 +122,20 @@ def relative_turns(first: Any, pp_meshes: Sequence[tuple[Any, Any, Any, Any]]
                     turns[b] = (-num * za, den * zb)
                     changed = True
     return turns
+
+
+def planets_meet(centre_a: Any, centre_b: Any, teeth_a: Any, teeth_b: Any) -> Any:
+    """Two planets on one carrier can mesh: their axes (at ``D_a``, ``D_b`` half-modules
+    from the central axis) and the central axis form a triangle whose third side is the
+    planets' centre distance ``z_a + z_b``: ``|D_a − D_b| < z_a + z_b < D_a + D_b``.
+
+    >>> bool(planets_meet(45, 60, 15, 15))      # models/planetary_double_planet.yaml
+    True
+    >>> bool(planets_meet(45, 80, 15, 15))      # 30 < |45 − 80| = 35: too far apart
+    False
+    """
+    reach = teeth_a + teeth_b
+    return (abs(centre_a - centre_b) < reach) & (reach < centre_a + centre_b)
 
 
 def neighbours_clear(teeth: np.ndarray, centre: np.ndarray, planets: int,

@@ -40,7 +40,8 @@ import numpy as np
 
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
-from powergraph.model.feasibility_axes import coaxiality, gear_module, mesh_geometry
+from powergraph.model.feasibility_axes import (coaxiality, gear_module, mesh_geometry,
+                                               mesh_centre)
 
 
 @dataclass
@@ -84,14 +85,18 @@ def _planetary_sets(model: Any) -> dict[str, PlanetarySet]:
         body = model.body_of[link.carrier]
         if model.components[link.carrier].count > 1:
             continue                                     # a crank: eccentric, not 2K-H
-        sets.setdefault(body, PlanetarySet(body)).meshes.append(link)
+        if body not in sets:
+            sets[body] = PlanetarySet(body)
+        sets[body].meshes.append(link)
     for pset in sets.values():
         for link in pset.meshes:
-            a, b = (model.components[x] for x in link.between)
+            a, b = model.components[link.between[0]], model.components[link.between[1]]
             for gear, other in ((a, b), (b, a)):
                 if gear.count > 1 or (other.internal and not gear.internal):
                     pset.planets.add(model.body_of[gear.id])
         pset.planets -= coupled
+        if not pset.planets:
+            continue
         pset.central = {x for link in pset.meshes for x in link.between
                         if model.body_of[x] not in pset.planets
                         and model.body_of[x] not in coupled}
@@ -123,6 +128,7 @@ def _central_meshes(model: Any, pset: PlanetarySet, body: str) -> list[tuple]:
 def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
     caveats: list[Caveat] = []
     wrong_rings: set[str] = set()
+    centres: dict[str, tuple[float, float | None]] = {}
     for body in sorted(pset.planets):
         meshes = _central_meshes(model, pset, body)
         found, teeth, mm = coaxiality(meshes)
@@ -130,11 +136,40 @@ def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
         if any(c.code == "ring-not-internal" for c in found):
             wrong_rings.add(body)
         if teeth is not None and not found:
+            centres[body] = (teeth, mm)
             caveats += _clearance(model, pset, body, teeth, mm)
+    caveats += _planets_meet(model, pset, centres)
     for cluster in _clusters(model, pset):
         if not wrong_rings.intersection(cluster):
             caveats += _assembly(model, pset, cluster, bool(phased.intersection(cluster)))
     return caveats
+
+
+def _planets_meet(model: Any, pset: PlanetarySet, centres: dict) -> list[Caveat]:
+    """Two meshing planets on their centre distances from the axis can reach each other
+    (:func:`planetary.planets_meet`): in mm when all three distances are known."""
+    out, seen = [], set()
+    for body in sorted(centres):
+        for link in pset.by_body.get(body, ()):
+            a, b = (model.components[x] for x in link.between)
+            ba, bb = model.body_of[a.id], model.body_of[b.id]
+            if link.index in seen or ba == bb or bb not in centres or ba not in centres \
+                    or not _toothed(link, model):
+                continue
+            seen.add(link.index)
+            pair = mesh_centre(link, a, b)
+            (ta, ma), (tb, mb) = centres[ba], centres[bb]
+            mm = None not in (ma, mb, pair.mm)
+            da, db, reach = (ma, mb, pair.mm) if mm else (ta, tb, pair.teeth)
+            if planetary.planets_meet(da, db, reach, 0):
+                continue
+            unit = "mm" if mm else "half-modules"
+            out.append(Caveat(
+                f"planets {a.id} ({a.teeth}) and {b.id} ({b.teeth}) cannot mesh: their axes "
+                f"are {da:.4g} and {db:.4g} {unit} from the central axis, so their centre "
+                f"distance {reach:.4g} must lie between |{da:.4g} − {db:.4g}| = "
+                f"{abs(da - db):.4g} and {da + db:.4g}", link.path, "coaxiality"))
+    return out
 
 
 # --- neighbours and assembly --------------------------------------------------------------
@@ -257,7 +292,9 @@ def _assembly_words(central: list, coefficients: list[int], n: int, phased: bool
         if a1 == -a2:                         # a simple planet between sun and ring
             return f"({z1} + {z2})/{n} = {(z1 + z2) / n:.4g} is not whole ({names}): {tail}"
         if a1 == a2:                          # a double planet between sun and ring
-            return f"({z2} − {z1})/{n} = {(z2 - z1) / n:.4g} is not whole ({names}): {tail}"
+            big, small = max(z1, z2), min(z1, z2)
+            return (f"({big} − {small})/{n} = {(big - small) / n:.4g} is not whole ({names}): "
+                    f"{tail}")
         value = (a2 * z1 - a1 * z2) / (n * math.gcd(a1, a2))
         return (f"({a2}·{z1} − ({a1})·{z2})/({n}·gcd({a1}, {a2})) = {value:.4g} is not whole "
                 f"({names}): {tail}")

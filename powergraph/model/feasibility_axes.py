@@ -41,7 +41,8 @@ class _Centre:
         return f"sun {self.central.teeth} + planet {self.planet.teeth} = {self.teeth}"
 
 
-def _centre(link: Any, central: Any, planet: Any) -> _Centre:
+def mesh_centre(link: Any, central: Any, planet: Any) -> _Centre:
+    """The centre distance of a mesh (``central`` may be another planet, external)."""
     teeth = planetary.centre_distance(central.teeth, planet.teeth, central.internal)
     geometry = mesh_geometry(link)
     if geometry is not None:
@@ -69,7 +70,7 @@ def gear_module(component: Any) -> float | None:
 def coaxiality(meshes: list[tuple]) -> tuple[list[Caveat], float | None, float | None]:
     """Caveats on one planet's central meshes ``(link, central gear, planet gear)``, and its
     centre distance (half-modules, and mm when every mesh gives a module) when they agree."""
-    centres = [_centre(*m) for m in meshes]
+    centres = [mesh_centre(*m) for m in meshes]
     if not centres:
         return [], None, None
     rings = _rings_not_internal(centres)

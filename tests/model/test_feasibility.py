@@ -103,6 +103,15 @@ def test_shifted_meshes_compare_working_centre_distances() -> None:
     assert (code, path) == ("coaxiality", "links[0..1]") and "17.1 mm" in message
 
 
+def test_double_planets_must_reach_each_other() -> None:
+    # sun 30 + inner 15: D_a = 45; ring 93 − outer 15: D_b = 78 half-modules; the planets'
+    # mesh needs 15 + 15 = 30 > |45 − 78| = 33: they cannot meet ((93 − 30)/3 = 21 assembles)
+    code, path, message = caveats(double_planet(30, 15, 15, 93))[0]
+    assert (code, path) == ("coaxiality", "links[1]")
+    assert "between |45 − 78| = 33 and 123" in message
+    assert codes(double_planet(30, 15, 15, 75)) == []    # |45 − 60| = 15 < 30 < 105
+
+
 # --- assembly -----------------------------------------------------------------------------
 def test_simple_set_assembly() -> None:
     # (24 + 72)/5 = 19.2: five planets do not fit at equal spacing; four do (96/4 = 24)

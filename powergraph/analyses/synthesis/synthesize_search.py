@@ -31,7 +31,7 @@ import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.teeth import Layout, layouts
-from powergraph.gears.planetary import assembles, relative_turns
+from powergraph.gears.planetary import assembles, planets_meet, relative_turns
 
 #: Grid points evaluated at once (bounds the memory of a search).
 SUB_CHUNK = 1 << 17
@@ -171,8 +171,7 @@ def joint_conditions(layout: Layout, flat: np.ndarray) -> np.ndarray:
     for k in pp:
         u, v, _ = graph.gear_pairs[k]
         if u in centres and v in centres:
-            reach = z[(k, 0)] + z[(k, 1)]
-            ok &= (np.abs(centres[u] - centres[v]) < reach) & (reach < centres[u] + centres[v])
+            ok &= planets_meet(centres[u], centres[v], z[(k, 0)], z[(k, 1)])
     for cluster in _clusters(layout):
         coax, coefficients = _cluster_meshes(layout, cluster, z)
         phased = any(st.phased(p) for p in cluster)
@@ -205,8 +204,8 @@ def _clusters(layout: Layout) -> list[list[int]]:
 
 def _cluster_meshes(layout: Layout, cluster: list[int], z: dict) -> tuple[list, list]:
     """Coaxial teeth and integer coefficients ``a_j`` of a planet cluster (see
-    :func:`~powergraph.analyses.synthesis.teeth.assembles`): each planet's turn is
-    ``num/den`` times the first one's, through the planet-planet meshes."""
+    :func:`~powergraph.gears.planetary.assembles`): each planet's turn is
+    ``num/den`` times the first one's (:func:`~powergraph.gears.planetary.relative_turns`)."""
     st, graph = layout.structure, layout.graph
     ones = np.ones_like(z[next(iter(z))])
     pp = [(u, v, z[(k, 0)], z[(k, 1)]) for k, (u, v, _) in enumerate(graph.gear_pairs)
