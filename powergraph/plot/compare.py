@@ -23,7 +23,8 @@ def plot_comparison(rows: Sequence, ax=None):
         _, ax = plt.subplots(figsize=(max(6.0, 1.6 * len(rows) + 2), 4.2))
     names = [r.name for r in rows]
     x = np.arange(len(rows))
-    series = [("efficiency", [100 * r.efficiency for r in rows]),
+    series = [("efficiency", [100 * r.efficiency if r.efficiency is not None else np.nan
+                              for r in rows]),
               ("back-driven efficiency",
                [100 * r.backdrive_efficiency if r.backdrive_efficiency is not None else np.nan
                 for r in rows])]

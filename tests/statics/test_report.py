@@ -111,3 +111,26 @@ def test_column_helpers() -> None:
     assert power_unit([999.0]) == ("W", 1.0) and power_unit([-1000.0]) == ("kW", 1e3)
     assert column([-1e-9, 2.5], significant=3) == ["0.00", "2.50"]
     assert column([1234567.0], 1e6) == ["1.23457"]
+
+
+@pytest.mark.slow
+def test_a_cycloid_mesh_loss_is_split_into_its_parts_and_the_table_adds_up() -> None:
+    """The cycloid mesh's basic efficiency is the product η_pins · η_bearings
+    (powergraph.gears.cycloid_loss), so its loss P (1 − η) is shared as
+    −ln η_part / −ln η: the parts add up to the mesh's loss, and every source to the
+    total loss."""
+    import math
+
+    from powergraph.statics.report import loss_sources
+
+    model = pg.load_model("models/rv40e.yaml")
+    result = pg.solve(model)
+    assert_conservation(result)
+    sources = dict(loss_sources(result))
+    assert sum(sources.values()) == pytest.approx(result.total_loss, rel=1e-12)
+    stage = model.links[1].blocks["friction"].loss
+    pins = next(v for k, v in sources.items() if k.endswith(": pins"))
+    bearings = next(v for k, v in sources.items() if k.endswith(": crank bearings"))
+    assert pins + bearings == pytest.approx(result.element(1).loss, rel=1e-12)
+    assert pins / bearings == pytest.approx(
+        math.log(stage.pin_efficiency) / math.log(stage.bearing_efficiency), rel=1e-12)

@@ -90,7 +90,8 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
         symbols=MappingProxyType(dict(table.symbols)), info=MappingProxyType(dict(table.info)),
         directions=_directions(elements, codes, factors, table), conditions=tuple(conditions),
         relations=MappingProxyType(dict(table.relations)),
-        numeric=MappingProxyType({"ratio": numeric.ratio, "efficiency": numeric.efficiency}),
+        numeric=MappingProxyType({"ratio": numeric.ratio,
+                                  "efficiency": numeric.formal_efficiency}),
         model=model)
 
 
