@@ -34,12 +34,13 @@ from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
+from powergraph.display import Displayed
 
 RPM = 2.0 * math.pi / 60.0
 
 
-@dataclass(frozen=True)
-class EfficiencyMap:
+@dataclass(frozen=True, repr=False)
+class EfficiencyMap(Displayed):
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
     ``torques[j]`` (N·m, the load the output drives). ``load_dependent`` is True when it
     varies over the map (load-dependent mesh friction, bearing friction or drag).
@@ -56,6 +57,18 @@ class EfficiencyMap:
     input_power: np.ndarray = field(default=None, repr=False)
     unconverged: tuple[tuple[float, float], ...] = ()
     single_solves: int = 0
+
+    def _summary(self) -> str:
+        return (f"{self.name}: {len(self.speeds_rpm)} speeds × {len(self.torques)} torques, "
+                f"efficiency {100 * np.nanmin(self.efficiency):.4g}–"
+                f"{100 * np.nanmax(self.efficiency):.4g} %")
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per point: input speed (rpm), output torque (N·m), efficiency."""
+        return [{"speed_rpm": float(s), "torque_nm": float(t), "efficiency": float(e)}
+                for s, row in zip(self.speeds_rpm, self.efficiency)
+                for t, e in zip(self.torques, row)]
+
 
     def to_dict(self) -> dict[str, Any]:
         """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,

@@ -8,6 +8,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from powergraph.analyses.tolerance.stats import QUANTILES, Yield
+from powergraph.display import Displayed
 
 LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
           "fluctuation_percent": ("ratio fluctuation", "%"),
@@ -16,8 +17,8 @@ LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
 PRIMARY = ("lost_motion_arcmin", "fluctuation_percent", "efficiency")
 
 
-@dataclass(frozen=True, eq=False)
-class ToleranceResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class ToleranceResult(Displayed):
     """Outputs of ``samples`` sampled units, yields of the specifications, sensitivities.
 
     Attributes
@@ -44,6 +45,16 @@ class ToleranceResult:
     sensitivity: Mapping[str, dict]
     sobol_samples: int = 0
     fluctuation_tables: Mapping[int, dict] = field(default_factory=dict)
+
+    def _summary(self) -> str:
+        return f"{self.name}: {self.samples} units (seed {self.seed})"
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per output: its unit and statistics."""
+        return [{"output": name, "unit": LABELS.get(name, (name, ""))[1] or "-",
+                 **{k: s.get(k) for k in ("mean", "sd", *QUANTILES, "min", "max")}}
+                for name, s in self.outputs.items()]
+
 
     @property
     def primary(self) -> str | None:
