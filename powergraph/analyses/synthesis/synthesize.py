@@ -107,7 +107,7 @@ class SynthesisResult(Displayed):
 
     def text_report(self) -> str:
         """The ``compare`` table of the rows, the teeth of each, and the search's figures."""
-        lines = [f"synthesis for ratio {self.ratio:g} ± {self.tolerance:.2%} — "
+        lines = [f"synthesis for ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%} — "
                  f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements "
                  f"({self.evaluated} grid points, {self.graphs} graphs, teeth "
                  f"{self.teeth[0]}-{self.teeth[1]}, {self.planets} planets, "
