@@ -35,6 +35,7 @@ from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
 from powergraph.display import Displayed
+from powergraph.format import aligned_table, format_fixed, format_number
 
 RPM = 2.0 * math.pi / 60.0
 
@@ -69,7 +70,6 @@ class EfficiencyMap(Displayed):
                 for s, row in zip(self.speeds_rpm, self.efficiency)
                 for t, e in zip(self.torques, row)]
 
-
     def to_dict(self) -> dict[str, Any]:
         """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,
         load_dependent, unconverged}`` (NaN efficiencies as null)."""
@@ -80,12 +80,12 @@ class EfficiencyMap(Displayed):
                 "unconverged": [list(p) for p in self.unconverged]}
 
     def text_report(self) -> str:
-        head = "speed rpm \\ torque N·m"
         lines = [f"{self.name} — efficiency map (%)" + ("" if self.load_dependent else
-                 ": constant mesh efficiencies and no drag, so it does not vary"),
-                 f"{head:>22}" + "".join(f"{t:>10.4g}" for t in self.torques)]
-        for speed, row in zip(self.speeds_rpm, self.efficiency):
-            lines.append(f"{speed:>22.5g}" + "".join(f"{100 * e:>10.3f}" for e in row))
+                 ": constant mesh efficiencies and no drag, so it does not vary")]
+        cells = [["speed rpm \\ torque N·m", *(format_number(t, 4) for t in self.torques)]]
+        cells += [[format_number(speed, 5), *(format_fixed(100 * e, 3) for e in row)]
+                  for speed, row in zip(self.speeds_rpm, self.efficiency)]
+        lines += aligned_table(cells, set(range(len(cells[0]))), rules_after=())
         if self.unconverged:
             lines.append(f"{len(self.unconverged)} point(s) did not converge (nan): " +
                          ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in self.unconverged))
