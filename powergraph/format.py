@@ -3,6 +3,8 @@
 - :func:`format_number`, :func:`format_fixed` — significant digits or fixed decimals, never
   ``-0``, ``-`` for a missing value;
 - :func:`format_ratio` — a reduction as ``121 : 1``, a step-up as ``1 : 100``;
+- :func:`format_power`, :func:`format_share` — one power with its own unit (``2.27 kW``), a
+  share of a reference in percent (the labels of the power-flow diagrams);
 - :func:`unit_scale` and :func:`format_column` — one unit for a whole column, chosen from
   its largest value (``W`` or ``kW``, ``mm³`` or ``L``...), so a column never mixes units;
 - :func:`aligned_table` — rows padded to widths computed from their cells, so long names
@@ -42,6 +44,8 @@ def format_number(value: float | None, digits: int = 4, zero: float = 0.0) -> st
 
     >>> [format_number(v) for v in (1617.66, -0.0, 0.000123456, float("nan"), 1.5e7)]
     ['1,618', '0', '0.0001235', '-', '15,000,000']
+    >>> format_number(1000.0, 5), format_number(1234.5, 5)
+    ('1,000', '1,234.5')
     """
     if _missing(value):
         return "-"
@@ -52,7 +56,8 @@ def format_number(value: float | None, digits: int = 4, zero: float = 0.0) -> st
         return "0"
     if 1000 <= abs(value) < 1e15:
         decimals = digits - 1 - math.floor(math.log10(abs(value)))
-        return f"{round(value, decimals):,.{max(decimals, 0)}f}"
+        text = f"{round(value, decimals):,.{max(decimals, 0)}f}"
+        return text.rstrip("0").rstrip(".") if "." in text else text
     return f"{value:.{digits}g}"
 
 
@@ -90,6 +95,38 @@ def format_ratio(ratio: float | None, digits: int = 4) -> str:
         return f"{format_number(ratio, digits)} : 1"
     sign = "-" if ratio < 0 else ""
     return f"{sign}1 : {format_number(1.0 / abs(ratio), digits)}"
+
+
+def format_power(watts: float) -> str:
+    """Power with three significant digits in mW, W, kW or MW.
+
+    >>> [format_power(p) for p in (0.0, 0.01473, 135.07, 999.96, 2270.0, 26093.7)]
+    ['0 W', '14.7 mW', '135 W', '1.00 kW', '2.27 kW', '26.1 kW']
+    """
+    if watts == 0 or not math.isfinite(watts):
+        return "0 W" if watts == 0 else f"{watts} W"
+    for scale, unit in ((1e6, "MW"), (1e3, "kW"), (1.0, "W"), (1e-3, "mW")):
+        value = float(f"{abs(watts) / scale:.3g}")
+        if value >= 1.0 or unit == "mW":
+            sign = "-" if watts < 0 else ""
+            text = f"{value:#.3g}".rstrip(".") if value < 1000 else f"{value:,.0f}"
+            return f"{sign}{text} {unit}"
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def format_share(power: float, reference: float) -> str:
+    """``power / reference`` in percent, three significant digits (no exponent).
+
+    >>> [format_share(p, 2270.0) for p in (0.0, 2270.0, 71.66, 26093.7)]
+    ['0 %', '100 %', '3.16 %', '1,150 %']
+    """
+    if not reference or not math.isfinite(reference):
+        return "- %"
+    share = 100.0 * power / abs(reference)
+    if share == 0:
+        return "0 %"
+    rounded = float(f"{share:.3g}")
+    return f"{rounded:,.0f} %" if abs(rounded) >= 100 else f"{rounded:#.3g}".rstrip(".") + " %"
 
 
 def unit_scale(values: Iterable[float | None], units: Sequence[tuple[str, float]]

@@ -4,8 +4,9 @@ Layers, earliest first (docs/architecture.md)::
 
     0 base        powergraph (the package facade: errors at import, the rest lazily),
                   powergraph.errors, powergraph.result, powergraph.format (numbers for a
-                  person), powergraph.gears (involute geometry and mesh-loss physics that
-                  the model, statics and analyses share)
+                  person), powergraph.display (repr, HTML, DataFrames), powergraph.gears
+                  (involute geometry and mesh-loss physics that the model, statics and
+                  analyses share)
     1 model       powergraph.model.*            (YAML, validation, units, graph)
     2 kinematics  powergraph.kinematics.*
     3 statics     powergraph.statics.*, powergraph.testing (checks of statics results),
@@ -42,7 +43,7 @@ LAYERS = (("powergraph.cli", 6), ("powergraph.__main__", 6), ("powergraph.plot",
           ("powergraph.analyses", 4), ("powergraph.testing", 3),
           ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
           ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0),
-          ("powergraph.result", 0), ("powergraph.format", 0), ("powergraph.gears", 0), ("powergraph", 0))
+          ("powergraph.result", 0), ("powergraph.format", 0), ("powergraph.display", 0), ("powergraph.gears", 0), ("powergraph", 0))
 
 
 def layer_of(module: str) -> int:

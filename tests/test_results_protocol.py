@@ -185,10 +185,20 @@ RESULTS = [
 ]
 
 
+_BUILT: dict = {}
+
+
+def built(name: str, build):
+    """Each result built once for the module (several fixtures use it)."""
+    if name not in _BUILT:
+        _BUILT[name] = build()
+    return _BUILT[name]
+
+
 @pytest.fixture(scope="module", params=RESULTS, ids=[name for name, _, _ in RESULTS])
 def case(request):
     name, build, draws = request.param
-    return name, build(), draws
+    return name, built(name, build), draws
 
 
 def test_is_a_result(case) -> None:
@@ -236,3 +246,53 @@ def test_an_object_without_the_methods_is_not_a_result() -> None:
             return ""
 
     assert not isinstance(Partial(), Result)
+
+
+#: Results that show themselves: a one-line repr, an HTML table, a DataFrame.
+DISPLAYED = ("ComparisonTable", "BacklashReport", "CycloidFluctuation", "VolumeResult",
+             "SweepResult", "ToleranceResult", "EfficiencyMap", "EnumerationResult",
+             "SynthesisResult")
+
+
+@pytest.fixture(scope="module", params=[r for r in RESULTS if r[0] in DISPLAYED],
+                ids=[r[0] for r in RESULTS if r[0] in DISPLAYED])
+def shown(request):
+    name, build, _ = request.param
+    return name, built(name, build)
+
+
+def test_repr_is_one_short_line(shown) -> None:
+    name, result = shown
+    text = repr(result)
+    assert text.startswith(f"<{name} ") and text.endswith(">")
+    assert "\n" not in text and len(text) < 200
+
+
+def test_repr_html_is_a_small_table(shown) -> None:
+    _, result = shown
+    page = result._repr_html_()
+    assert page.startswith("<table>") and page.endswith("</table>")
+    assert page.count("<tr>") <= 1 + 21 + 1          # header, 20 rows, "... more rows"
+    assert "<td>" in page and "-0<" not in page
+
+
+@pytest.mark.slow  # imports pandas
+def test_to_dataframe_has_a_row_per_record(shown) -> None:
+    pd = pytest.importorskip("pandas")
+    _, result = shown
+    frame = result.to_dataframe()
+    assert isinstance(frame, pd.DataFrame) and len(frame) > 0
+    size = getattr(result, "size", None)
+    if size is not None:                              # a sweep: one row per variant
+        assert len(frame) == size
+
+
+def test_to_dataframe_without_pandas_says_so(shown, monkeypatch) -> None:
+    import sys
+
+    from powergraph.errors import UsageError
+
+    _, result = shown
+    monkeypatch.setitem(sys.modules, "pandas", None)    # import pandas -> ImportError
+    with pytest.raises(UsageError, match="pip install pandas"):
+        result.to_dataframe()

@@ -24,6 +24,7 @@ from powergraph.model.spec import Model
 from powergraph.format import (POWER_UNITS, VOLUME_UNITS, aligned_table, format_column,
                                format_fixed, format_number, format_ratio)
 from powergraph.statics import solve
+from powergraph.display import Displayed
 
 #: Text-table columns: (row attribute, header, how a cell is written). A header with
 #: ``{unit}`` takes the one unit its column is written in (powergraph.format).
@@ -75,12 +76,20 @@ class ComparisonRow:
         return asdict(self)
 
 
-@dataclass(frozen=True)
-class ComparisonTable:
+@dataclass(frozen=True, repr=False)
+class ComparisonTable(Displayed):
     """Rows of several trains; a sequence of :class:`ComparisonRow` (``table[0]``,
     ``for row in table``) that follows :class:`powergraph.result.Result`."""
 
     rows: tuple[ComparisonRow, ...]
+
+    def _summary(self) -> str:
+        return f"{len(self.rows)} train(s): " + ", ".join(r.name for r in self.rows[:3]) \
+            + (", ..." if len(self.rows) > 3 else "")
+
+    def _records(self) -> list[dict[str, Any]]:
+        return [row.to_dict() for row in self.rows]
+
 
     def __iter__(self) -> Iterator[ComparisonRow]:
         return iter(self.rows)

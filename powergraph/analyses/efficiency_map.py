@@ -36,11 +36,13 @@ from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
 from powergraph.statics.ports import flow_efficiency_of_roles
 from powergraph.units_si import RAD_S_PER_RPM
+from powergraph.display import Displayed
+from powergraph.format import aligned_table, format_fixed, format_number
 
 
 
-@dataclass(frozen=True)
-class EfficiencyMap:
+@dataclass(frozen=True, repr=False)
+class EfficiencyMap(Displayed):
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
     ``torques[j]`` (N·m, the load the output drives). ``load_dependent`` is True when it
     varies over the map (load-dependent mesh friction, bearing friction or drag).
@@ -58,6 +60,17 @@ class EfficiencyMap:
     unconverged: tuple[tuple[float, float], ...] = ()
     single_solves: int = 0
 
+    def _summary(self) -> str:
+        return (f"{self.name}: {len(self.speeds_rpm)} speeds × {len(self.torques)} torques, "
+                f"efficiency {100 * np.nanmin(self.efficiency):.4g}–"
+                f"{100 * np.nanmax(self.efficiency):.4g} %")
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per point: input speed (rpm), output torque (N·m), efficiency."""
+        return [{"speed_rpm": float(s), "torque_nm": float(t), "efficiency": float(e)}
+                for s, row in zip(self.speeds_rpm, self.efficiency)
+                for t, e in zip(self.torques, row)]
+
     def to_dict(self) -> dict[str, Any]:
         """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,
         load_dependent, unconverged}`` (NaN efficiencies as null)."""
@@ -68,12 +81,12 @@ class EfficiencyMap:
                 "unconverged": [list(p) for p in self.unconverged]}
 
     def text_report(self) -> str:
-        head = "speed rpm \\ torque N·m"
         lines = [f"{self.name} — efficiency map (%)" + ("" if self.load_dependent else
-                 ": constant mesh efficiencies and no drag, so it does not vary"),
-                 f"{head:>22}" + "".join(f"{t:>10.4g}" for t in self.torques)]
-        for speed, row in zip(self.speeds_rpm, self.efficiency):
-            lines.append(f"{speed:>22.5g}" + "".join(f"{100 * e:>10.3f}" for e in row))
+                 ": constant mesh efficiencies and no drag, so it does not vary")]
+        cells = [["speed rpm \\ torque N·m", *(format_number(t, 4) for t in self.torques)]]
+        cells += [[format_number(speed, 5), *(format_fixed(100 * e, 3) for e in row)]
+                  for speed, row in zip(self.speeds_rpm, self.efficiency)]
+        lines += aligned_table(cells, set(range(len(cells[0]))), rules_after=())
         if self.unconverged:
             lines.append(f"{len(self.unconverged)} point(s) did not converge (nan): " +
                          ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in self.unconverged))

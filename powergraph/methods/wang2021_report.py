@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from powergraph.format import format_ratio
 from powergraph.methods.tuning import lossless_cycloid_power
 from powergraph.statics.flow import BODY, GENERATOR, MOTOR, Flow
 from powergraph.units_si import RPM_PER_RAD_S
@@ -130,7 +131,7 @@ def text_report(result: "Wang2021Result") -> str:
     eq, model = result.equations, result.model
     lines = [f"{model.name} — Wang (2021) split/virtual power method", _roles_line(result), ""]
     if result.ratio is not None:
-        lines.append(f"ratio (input/output speed)        {result.ratio:.6g}")
+        lines.append(f"ratio (input/output speed)        {format_ratio(result.ratio, 6)}")
     lines += [f"split power ratio beta = -w2/w4   {eq.beta:.6g}    (Eq. 8)",
               f"virtual power ratio alpha         {eq.alpha:.6g}    (Eq. 12)",
               f"input power P                     {_power(eq.input_power)}",

@@ -133,3 +133,14 @@ def test_a_locked_back_drive_has_efficiency_0_and_the_reason() -> None:
     row, = compare_models([rv])
     assert row.backdrive_efficiency == 0.0 and row.backdrive_self_locking is True
     assert row.backdrive_note.startswith("locks: links[")
+
+
+def test_a_step_up_reads_1_to_n(capsys) -> None:
+    """Carrier in, sun out, ring fixed: i = z_s / (z_s + z_r) = 24 / 96 = 1/4, a step-up
+    (models/planetary_2kh_carrier_to_sun.yaml): the table says ``1 : 4``, not 0.25."""
+    model = pg.load_model(MODELS / "planetary_2kh_carrier_to_sun.yaml")
+    assert_conservation(pg.solve(model))
+    table = compare_models([model])
+    assert table[0].ratio == pytest.approx(0.25)
+    row = table.text_report().splitlines()[2]
+    assert "1 : 4" in row and "0.25" not in row

@@ -40,12 +40,16 @@ def test_output_folder_gets_models_that_solve_and_a_sheet(capsys, tmp_path) -> N
     folder = tmp_path / "trains"
     status, out, err = run(capsys, "--links", "4", "-o", str(folder))
     assert status == 0, err
+    assert out.splitlines()[-1] == f"wrote {folder} (3 model files and graphs.png)"
     files = sorted(folder.glob("dgraph_*.yaml"))
     assert len(files) == 3          # 4 links: 3 d-graphs (derived by hand in the analysis tests)
     assert (folder / "graphs.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     for path in files:
         model = load_model(path)
         assert "placeholder" in model.description
+        assert model.name.startswith("4-link d-graph")
+        assert all(c.name for c in model.components.values())      # every part named
+        assert model.components[model.frame].name.endswith("(fixed)")
         result = solve(model)
         assert_conservation(result)
         assert 0 < result.efficiency <= 1

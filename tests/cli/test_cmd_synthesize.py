@@ -28,7 +28,7 @@ def test_table_lists_trains_within_the_tolerance(capsys) -> None:
     status, out, err = run(capsys, "--ratio", "5", "--max-links", "4", "--top", "4")
     assert status == 0, err
     lines = out.splitlines()
-    assert lines[0].startswith("synthesis for ratio 5 ± 0.50%")
+    assert lines[0].startswith("synthesis for ratio 5 : 1 ± 0.50%")
     header = next(line for line in lines if line.startswith("train"))
     for column in ("ratio", "eff. %", "back %", "locks back", "circ. W", "max Pv/P", "meshes"):
         assert column in header

@@ -61,6 +61,11 @@ def test_text_report_and_figure(capsys, tmp_path) -> None:
     assert status == 0, err
     assert "Wilson" in out and "Sobol" in out and "lost motion" in out
     assert figure.stat().st_size > 10_000
+    assert out.splitlines()[-1] == f"wrote {figure}"
+    # each toleranced PATH with the mesh it belongs to, in the model's names (links[1]
+    # of rv40e_tolerances.yaml is the cycloid gear - needle gear mesh)
+    line = next(x for x in out.splitlines() if x.startswith("links.1.backlash_arcmin"))
+    assert "mesh cycloid gear-needle gear" in line
 
 
 def test_same_seed_same_output(capsys, pair) -> None:

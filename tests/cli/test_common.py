@@ -269,6 +269,8 @@ def test_argparse_mistakes_are_one_line() -> None:
     assert err.startswith("powergraph: error: argument --torque: expected one argument")
 
 
+RV40E = str(Path(__file__).resolve().parents[2] / "models" / "rv40e.yaml")
+
 
 def test_say_wrote_goes_to_stdout_or_to_stderr_beside_data(capsys) -> None:
     say_wrote("a.png", "(actual powers)")
@@ -280,7 +282,7 @@ def test_say_wrote_goes_to_stdout_or_to_stderr_beside_data(capsys) -> None:
 @pytest.mark.slow  # a solve and a figure
 def test_json_on_stdout_stays_json_when_a_file_is_written(capsys, tmp_path) -> None:
     target = tmp_path / "v.png"
-    assert main(["volume", "models/rv40e.yaml", "--json", "--plot", str(target)]) == 0
+    assert main(["volume", RV40E, "--json", "--plot", str(target)]) == 0
     out, err = capsys.readouterr()
     json.loads(out)
     assert err.strip() == f"wrote {target}"

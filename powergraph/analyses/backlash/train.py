@@ -26,6 +26,7 @@ from powergraph.errors import KinematicsError, ModelError, UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Link, Model
 from powergraph.result import nothing_to_draw
+from powergraph.display import Displayed
 
 
 @dataclass(frozen=True)
@@ -63,8 +64,8 @@ class MeshBacklash:
         return data
 
 
-@dataclass(frozen=True)
-class BacklashReport:
+@dataclass(frozen=True, repr=False)
+class BacklashReport(Displayed):
     """Per-mesh backlash and the output's lost motion (arc-minutes) of one model."""
 
     name: str
@@ -72,6 +73,17 @@ class BacklashReport:
     meshes: tuple[MeshBacklash, ...]
     meshes_without_backlash: tuple[tuple[Any, Any], ...]
     model: Model | None = field(default=None, repr=False, compare=False)
+
+    def _summary(self) -> str:
+        return f"{self.name}: {len(self.meshes)} mesh(es) with backlash, output {self.output}"
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per mesh: its play (arcmin) and how much of it reaches the output."""
+        return [{"link": m.link, "between": "-".join(map(str, m.raw_between)),
+                 "play_arcmin": m.play_arcmin, "sensitivity": m.sensitivity,
+                 "at_output_arcmin": abs(m.play_arcmin * m.sensitivity)}
+                for m in self.meshes]
+
 
     @property
     def worst_case(self) -> float:

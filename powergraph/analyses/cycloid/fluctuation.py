@@ -10,6 +10,7 @@ from powergraph.analyses.cycloid.contact import contact_curve, handovers
 from powergraph.analyses.cycloid.geometry import CycloidGeometry, cycloid_geometry
 from powergraph.analyses.cycloid.report import stage_text
 from powergraph.errors import UsageError
+from powergraph.display import Displayed
 
 #: Samples of the crank angle per contact segment (a segment is 2π/z2 of crank angle).
 POINTS_PER_SEGMENT = 32
@@ -17,8 +18,8 @@ POINTS_PER_SEGMENT = 32
 PAPER_STEP_DEG = 2.0
 
 
-@dataclass(frozen=True, eq=False)
-class CycloidFluctuation:
+@dataclass(frozen=True, eq=False, repr=False)
+class CycloidFluctuation(Displayed):
     """Ratio of a cycloid stage over one input (crank) revolution.
 
     Attributes
@@ -59,6 +60,16 @@ class CycloidFluctuation:
     max_deviation_angle: float
     paper_crank_angle: np.ndarray
     paper_ratio: np.ndarray
+
+    def _summary(self) -> str:
+        return (f"z1 = {self.geometry.teeth}, d = {self.profile_error:g} mm: max |Δi| "
+                f"{self.max_deviation_percent:.4g} %")
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per sampled crank angle (deg): the exact ratio and the pin in contact."""
+        return [{"crank_angle_deg": float(np.degrees(a)), "ratio": float(r), "pin": int(p)}
+                for a, r, p in zip(self.crank_angle, self.ratio, self.contact_pin)]
+
 
     @property
     def max_deviation_percent_2deg(self) -> float:

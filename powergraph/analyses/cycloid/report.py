@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+from powergraph.format import format_ratio
+
 def stage_text(r) -> str:
     """Report of one stage (:class:`CycloidFluctuation`)."""
     g = r.geometry
@@ -20,7 +22,7 @@ def stage_text(r) -> str:
         f"  pin circle radius {g.pin_circle_radius:g} mm, eccentricity "
         f"{g.eccentricity:g} mm, pin radius {g.pin_radius:g} mm",
         f"profile error d = {r.profile_error:g} mm",
-        f"  nominal ratio                     {r.ratio_nominal:g}",
+        f"  nominal ratio                     {format_ratio(r.ratio_nominal, 6)}",
         f"  ratio over a revolution           {r.ratio.min():.6g} … {r.ratio.max():.6g}",
         f"  max |Δi| exact (pin hand-over)    {r.max_deviation_percent:.6g} %  at crank "
         f"angle {math.degrees(r.max_deviation_angle):.4g}°",

@@ -10,6 +10,7 @@ import numpy as np
 
 from powergraph.format import csv_header
 from powergraph.statics.ports import flow_efficiency_of_roles
+from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
 
 #: Status codes of a variant (``SweepResult.status``), by value.
 STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
@@ -24,8 +25,8 @@ COLUMN_UNITS = {"ratio": "-", "efficiency": "-", "input_power": "W", "output_pow
                 "torque": "N*m", "formal_efficiency": "-"}
 
 
-@dataclass(frozen=True)
-class SweepResult:
+@dataclass(frozen=True, repr=False)
+class SweepResult(Displayed):
     """Ratio, efficiency, losses and flags of every variant of a sweep.
 
     Every array has the broadcast shape of the swept values (``shape``).
@@ -83,6 +84,27 @@ class SweepResult:
     status: np.ndarray
     passes: np.ndarray
     backend: str
+
+    def _summary(self) -> str:
+        return self.text_report()
+
+    def _records(self) -> list[dict[str, Any]]:
+        """The first rows, for the HTML table (all of them: :meth:`to_dataframe`)."""
+        columns = self.columns(extra=True)
+        return [{k: v[i].item() for k, v in columns.items()}
+                for i in range(min(self.size, HTML_ROWS + 1))]
+
+    def _repr_html_(self) -> str:
+        return html_table(self._records(), f"SweepResult: {self._summary()}"
+                          + (f" (first {HTML_ROWS} shown)" if self.size > HTML_ROWS else ""))
+
+    def to_dataframe(self) -> Any:
+        """One row per variant: each PATH, ratio, efficiency, powers and losses (W), flags
+        and status (pandas is optional)."""
+        columns = self.columns(extra=True)
+        columns["status"] = np.array([STATUS[s] for s in columns["status"].tolist()])
+        return dataframe(columns)
+
 
     @classmethod
     def of(cls, name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],

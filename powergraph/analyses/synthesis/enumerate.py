@@ -16,6 +16,7 @@ from typing import Any
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.errors import UsageError
+from powergraph.display import Displayed
 
 #: Published counts ``{dof: {links: (r-graphs, d-graphs)}}``: Yang W. & Ding H., "The
 #: complete set of one-degree-of-freedom planetary gear trains with up to nine links",
@@ -25,8 +26,8 @@ PUBLISHED = {1: {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837)}}
 MAX_LINKS = 9
 
 
-@dataclass(frozen=True)
-class EnumerationResult:
+@dataclass(frozen=True, repr=False)
+class EnumerationResult(Displayed):
     """The displacement graphs of one size, with the rotation graph each one has.
 
     Attributes
@@ -41,6 +42,18 @@ class EnumerationResult:
     dof: int
     graphs: tuple[TrainGraph, ...]
     rotation_index: tuple[int, ...]
+
+    def _summary(self) -> str:
+        return (f"{self.links} links, {self.dof} DOF: {self.rotation_graphs} r-graphs, "
+                f"{self.displacement_graphs} d-graphs")
+
+    def _records(self) -> list[dict[str, Any]]:
+        return [{"name": g.name, "r_graph": r,
+                 "axes": " ".join("{" + ",".join(map(str, sorted(a))) + "}"
+                                  for a in axes_of(g)),
+                 "gears": " ".join(f"{u}-{v}/{c}" for u, v, c in g.gear_pairs)}
+                for g, r in zip(self.graphs, self.rotation_index)]
+
 
     @property
     def rotation_graphs(self) -> int:

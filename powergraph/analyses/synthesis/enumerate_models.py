@@ -32,6 +32,30 @@ def placeholder_teeth(train: TrainGraph) -> dict[tuple[int, int], int]:
     return {(k, s): primes[2 * k + s] for k in range(len(train.gear_pairs)) for s in (0, 1)}
 
 
+def component_names(train: TrainGraph, frame: int) -> dict[str, str]:
+    """A name per link and gear from the graph alone: a link on the main axis that carries
+    a gear pair is a ``carrier``, another one ``central`` (sun or ring: the placeholder
+    teeth do not decide), a link off the main axis a ``planet``; a gear is named after
+    its link (``planet gear L2``); the frame is marked ``(fixed)``.
+
+    >>> g = TrainGraph(4, ((0, 1, 0), (0, 2, 0), (0, 3, 1)), ((1, 3, 0), (2, 3, 0)))
+    >>> component_names(g, 0)["L3"], component_names(g, 0)["g0b"]
+    ('planet L3', 'planet gear L3')
+    """
+    from powergraph.analyses.synthesis.enumerate import axes_of
+
+    main = max(axes_of(train), key=len)
+    carriers = {c for _, _, c in train.gear_pairs}
+    roles = {n: ("planet" if n not in main else "carrier" if n in carriers else "central")
+             for n in range(train.links)}
+    names = {f"L{n}": f"{role} L{n}" + (" (fixed)" if n == frame else "")
+             for n, role in roles.items()}
+    for k, (u, v, _) in enumerate(train.gear_pairs):
+        for side, link in enumerate((u, v)):
+            names[f"g{k}{'ab'[side]}"] = f"{roles[link]} gear L{link}"
+    return names
+
+
 def model_document(train: TrainGraph, teeth: dict[tuple[int, int], int] | None = None,
                    mesh_efficiency: float = 1.0) -> dict[str, Any]:
     """A model document for ``train`` (:meth:`TrainGraph.to_model_dict`) that solves.
@@ -63,7 +87,7 @@ def model_document(train: TrainGraph, teeth: dict[tuple[int, int], int] | None =
         for ports in permutations(order, train.dof + 1):
             doc = train.to_model_dict(frame=frame, inputs=ports[:-1], outputs=ports[-1:],
                                       teeth=teeth, mesh_efficiency=mesh_efficiency,
-                                      name=train.name)
+                                      name=train.name, names=component_names(train, frame))
             doc["description"] = (f"{train.name or 'train'}: {train.dof}-DOF graph of "
                                   f"{train.links} links; {PLACEHOLDER_NOTE}")
             if _moves(doc, train.dof):

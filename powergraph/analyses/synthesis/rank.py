@@ -22,7 +22,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from powergraph.analyses.synthesis.naming import (arrangement_name, gear_names, link_names,
-                                                  role_names, teeth_text)
+                                                  teeth_text)
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.analyses.synthesis.teeth import Layout
 
@@ -139,10 +139,11 @@ def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficie
     name = arrangement_name(layout, hits.fixed, hits.input, hits.output)
     names = {f"L{n}": text for n, text in link_names(layout, hits.fixed).items()}
     names.update(gear_names(layout))
-    planets = set(layout.structure.planets())
+    planets = set(layout.structure.planets())      # replicated: `planets` identical copies
     counts = {f"L{p}": layout.planets for p in planets}
-    counts.update({g: layout.planets for g, text in gear_names(layout).items()
-                   if int(text.split(" L")[-1]) in planets})
+    counts.update({f"g{k}{'ab'[side]}": layout.planets
+                   for k, pair in enumerate(layout.graph.gear_pairs)
+                   for side, link in enumerate(pair[:2]) if link in planets})
     return layout.graph.to_model_dict(frame=hits.fixed, inputs=(hits.input,),
                                       outputs=(hits.output,), teeth=pairs,
                                       internal=layout.internal,

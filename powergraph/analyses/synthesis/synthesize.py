@@ -30,6 +30,8 @@ from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts, search_range
 from powergraph.errors import UsageError
 from powergraph.result import aligned_table
+from powergraph.display import Displayed
+from powergraph.format import format_ratio
 
 #: Grid points per chunk of work handed to a worker.
 CHUNK = 1 << 20
@@ -37,8 +39,8 @@ CHUNK = 1 << 20
 MAX_GRID = 4_000_000
 
 
-@dataclass(frozen=True)
-class SynthesisResult:
+@dataclass(frozen=True, repr=False)
+class SynthesisResult(Displayed):
     """Ranked trains of ratio ``ratio`` (within ``tolerance``, relative).
 
     ``rows`` are the best ``top`` arrangements (each at its best tooth set); ``feasible``
@@ -58,6 +60,18 @@ class SynthesisResult:
     evaluated: int
     graphs: int
     skipped: tuple[tuple[str, str, int], ...]
+
+    def _summary(self) -> str:
+        return (f"ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%}: {len(self.rows)} "
+                f"train(s) shown of {self.arrangements} arrangements")
+
+    def _records(self) -> list[dict[str, Any]]:
+        return [{"name": r.name, "ratio": r.ratio, "efficiency": r.efficiency,
+                 "backdrive_efficiency": r.backdrive_efficiency,
+                 "circulating_power": r.circulating_power,
+                 "max_virtual_power_ratio": r.max_virtual_power_ratio, "meshes": r.meshes,
+                 "teeth": r.teeth_text()} for r in self.rows]
+
 
     def __iter__(self):
         return iter(self.rows)
@@ -93,7 +107,7 @@ class SynthesisResult:
 
     def text_report(self) -> str:
         """The ``compare`` table of the rows, the teeth of each, and the search's figures."""
-        lines = [f"synthesis for ratio {self.ratio:g} ± {self.tolerance:.2%} — "
+        lines = [f"synthesis for ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%} — "
                  f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements "
                  f"({self.evaluated} grid points, {self.graphs} graphs, teeth "
                  f"{self.teeth[0]}-{self.teeth[1]}, {self.planets} planets, "

@@ -10,7 +10,7 @@ same uniform-then-quantile coordinates, so the indices are those of the distribu
 from __future__ import annotations
 
 import sys
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 
@@ -18,6 +18,7 @@ from powergraph.analyses.tolerance.evaluate import ToleranceEvaluator
 from powergraph.analyses.tolerance.result import ToleranceResult
 from powergraph.analyses.tolerance.stats import Spec, Yield, parse_spec, summary
 from powergraph.errors import UsageError
+from powergraph.model.spec import Model
 
 #: Units evaluated per vectorised call (bounds the memory of the work arrays).
 CHUNK = 1 << 17
@@ -91,7 +92,22 @@ def tolerance_analysis(model, samples: int = 100_000, seed: int | None = None,
         tolerances=evaluate.tolerances, values=values,
         outputs={k: summary(v) for k, v in values.items()}, yields=yields,
         sensitivity=sensitivity, sobol_samples=int(sobol_samples),
-        fluctuation_tables=tables)
+        fluctuation_tables=tables, labels=path_labels(model, evaluate.tolerances))
+
+
+def path_labels(model: Model, tolerances: Any) -> dict[str, str]:
+    """What each toleranced PATH is, in the model's names: ``mesh cycloid gear-needle
+    gear`` for ``links.1.backlash_arcmin``."""
+    labels = {}
+    for entry in tolerances.entries:
+        parts = []
+        for index in entry.target.links:
+            link = model.links[index]
+            names = [model.components[c].name or str(raw)
+                     for c, raw in zip(link.between, link.raw_between)]
+            parts.append(f"{link.type} {'-'.join(names)}")
+        labels[entry.target.path] = ", ".join(parts)
+    return labels
 
 
 def _columns(evaluate: ToleranceEvaluator, u: np.ndarray) -> dict[str, np.ndarray]:

@@ -1,13 +1,14 @@
 """The result of a tolerance analysis: a frozen dataclass with JSON, text and plot."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 import numpy as np
 
 from powergraph.analyses.tolerance.stats import QUANTILES, Yield
+from powergraph.format import aligned_table, format_fixed, format_number
+from powergraph.display import Displayed
 
 LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
           "fluctuation_percent": ("ratio fluctuation", "%"),
@@ -16,8 +17,8 @@ LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
 PRIMARY = ("lost_motion_arcmin", "fluctuation_percent", "efficiency")
 
 
-@dataclass(frozen=True, eq=False)
-class ToleranceResult:
+@dataclass(frozen=True, eq=False, repr=False)
+class ToleranceResult(Displayed):
     """Outputs of ``samples`` sampled units, yields of the specifications, sensitivities.
 
     Attributes
@@ -32,6 +33,8 @@ class ToleranceResult:
     fluctuation_tables : mapping
         ``{link: {errors, values, interpolation_error_bound}}`` where the profile error
         varies.
+    labels : mapping
+        ``{PATH: what it is}`` in the model's names (``mesh cycloid gear-needle gear``).
     """
 
     name: str
@@ -44,6 +47,17 @@ class ToleranceResult:
     sensitivity: Mapping[str, dict]
     sobol_samples: int = 0
     fluctuation_tables: Mapping[int, dict] = field(default_factory=dict)
+    labels: Mapping[str, str] = field(default_factory=dict)
+
+    def _summary(self) -> str:
+        return f"{self.name}: {self.samples} units (seed {self.seed})"
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per output: its unit and statistics."""
+        return [{"output": name, "unit": LABELS.get(name, (name, ""))[1] or "-",
+                 **{k: s.get(k) for k in ("mean", "sd", *QUANTILES, "min", "max")}}
+                for name, s in self.outputs.items()]
+
 
     @property
     def primary(self) -> str | None:
@@ -94,8 +108,9 @@ class ToleranceResult:
         for output in self.sensitivity:
             lines += ["", f"Sobol indices of {LABELS.get(output, (output,))[0]} "
                           f"(SALib, N = {self.sobol_samples}), by total index"]
-            rows = [["PATH", "first", "total"]]
-            rows += [[p, _num(s["first"]), _num(s["total"])] for p, s in self.ranked(output)]
+            rows = [["PATH", "what", "first", "total"]]
+            rows += [[p, self.labels.get(p, ""), _index(s["first"]), _index(s["total"])]
+                     for p, s in self.ranked(output)]
             lines += _table(rows)
         for link, table in self.fluctuation_tables.items():
             lines += ["", f"fluctuation of links[{link}]: linear interpolation on "
@@ -114,13 +129,15 @@ class ToleranceResult:
 
 
 def _num(value: float) -> str:
-    return "-" if value is None or (isinstance(value, float) and math.isnan(value)) \
-        else f"{value:.6g}"
+    return format_number(value, 6)
+
+
+def _index(value: float) -> str:
+    """A Sobol index to three decimals (never ``-0.000``)."""
+    return format_fixed(value, 3)
 
 
 def _table(rows: list[list[str]]) -> list[str]:
-    """Rows padded to common widths, the first column left-aligned, the others right."""
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
-    return ["  ".join(cell.ljust(w) if i == 0 else cell.rjust(w)
-                      for i, (cell, w) in enumerate(zip(row, widths))).rstrip()
-            for row in rows]
+    """Rows padded to widths from their cells: text columns left-aligned, numbers right."""
+    numeric = {i for i in range(len(rows[0])) if rows[0][i] not in ("output", "PATH", "what")}
+    return aligned_table(rows, numeric, rules_after=())

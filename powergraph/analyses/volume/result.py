@@ -5,6 +5,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.result import aligned_table, nothing_to_draw
+from powergraph.display import Displayed
 
 #: Unit of :func:`power_density`: kilowatt per litre (1 kW/L = 1 W/cm³ = 1e-3 W/mm³).
 POWER_DENSITY_UNIT = "kW/L"
@@ -65,8 +66,8 @@ class ComponentVolume:
                 "profile_error": self.profile_error}
 
 
-@dataclass(frozen=True)
-class VolumeResult:
+@dataclass(frozen=True, repr=False)
+class VolumeResult(Displayed):
     """Volumes of every component that has a ``geometry`` block, and the total (Eq. 8).
 
     Attributes
@@ -79,6 +80,16 @@ class VolumeResult:
 
     name: str
     components: Mapping[str, ComponentVolume]
+
+    def _summary(self) -> str:
+        return f"{self.name}: {len(self.components)} parts, {self.total_litres:.4g} L"
+
+    def _records(self) -> list[dict[str, Any]]:
+        """One row per component: count and volumes (mm³)."""
+        return [{"component": cid, "name": c.name, "shape": c.shape, "count": c.count,
+                 "volume_mm3": c.volume_mm3, "exact_mm3": c.exact_mm3}
+                for cid, c in self.components.items()]
+
 
     @property
     def total_mm3(self) -> float:

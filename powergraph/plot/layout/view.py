@@ -18,7 +18,6 @@ Examples
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
@@ -28,6 +27,7 @@ from powergraph.errors import UsageError
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.statics.flow import (BODY, FRAME, GENERATOR, GROUND, KINDS, LOSS, MOTOR, Flow,
                                      Node, circulating_power)
+from powergraph.format import format_power, format_share  # noqa: F401  (re-exported)
 
 
 @dataclass(frozen=True)
@@ -90,38 +90,6 @@ class FlowView:
         """``'2.06 kW\\n90.9 %'``: the power and its share of the input power."""
         power = 0.0 if self.is_zero(flow) else flow.power
         return f"{format_power(power)}\n{format_share(power, self.input_power)}"
-
-
-def format_power(watts: float) -> str:
-    """Power with three significant digits in mW, W, kW or MW.
-
-    >>> [format_power(p) for p in (0.0, 0.01473, 135.07, 999.96, 2270.0, 26093.7)]
-    ['0 W', '14.7 mW', '135 W', '1.00 kW', '2.27 kW', '26.1 kW']
-    """
-    if watts == 0 or not math.isfinite(watts):
-        return "0 W" if watts == 0 else f"{watts} W"
-    for scale, unit in ((1e6, "MW"), (1e3, "kW"), (1.0, "W"), (1e-3, "mW")):
-        value = float(f"{abs(watts) / scale:.3g}")
-        if value >= 1.0 or unit == "mW":
-            sign = "-" if watts < 0 else ""
-            text = f"{value:#.3g}".rstrip(".") if value < 1000 else f"{value:,.0f}"
-            return f"{sign}{text} {unit}"
-    raise AssertionError("unreachable")  # pragma: no cover
-
-
-def format_share(power: float, reference: float) -> str:
-    """``power / reference`` in percent, three significant digits (no exponent).
-
-    >>> [format_share(p, 2270.0) for p in (0.0, 2270.0, 71.66, 26093.7)]
-    ['0 %', '100 %', '3.16 %', '1,150 %']
-    """
-    if not reference or not math.isfinite(reference):
-        return "- %"
-    share = 100.0 * power / abs(reference)
-    if share == 0:
-        return "0 %"
-    rounded = float(f"{share:.3g}")
-    return f"{rounded:,.0f} %" if abs(rounded) >= 100 else f"{rounded:#.3g}".rstrip(".") + " %"
 
 
 def flow_view(result: Any, frame: str | int | None = None) -> FlowView:
