@@ -37,7 +37,6 @@ from powergraph.statics.friction import friction_meshes
 from powergraph.units_si import RAD_S_PER_RPM
 
 
-
 @dataclass(frozen=True)
 class EfficiencyMap:
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
