@@ -184,7 +184,7 @@ class ClosedForm:
             return False
         target = out if valid.all() else type(out).empty(n, lay.n_elements)
         write_settled(lay, chunk, torques, rel, speeds, forces, factors, self.moving, target,
-                      self.passes)
+                      self.passes, read)
         if target is out:
             return True
         out.put(valid, target, valid)
