@@ -407,3 +407,4 @@ def equilibrated(matrix: np.ndarray) -> np.ndarray:
     matrix = matrix / np.where(rows > 0, rows, 1.0)[:, None]
     cols = np.abs(matrix).max(axis=0, initial=0.0)
     return matrix / np.where(cols > 0, cols, 1.0)
+

@@ -29,7 +29,6 @@ if TYPE_CHECKING:
     from powergraph.methods.wang2021 import Wang2021Result
 
 
-
 def _pair(result: "Wang2021Result", link: int) -> str:
     """``1-2``: the link's two components as written in the file."""
     a, b = (result.model.raw_id(c) for c in result.model.links[link].between)

@@ -28,7 +28,6 @@ from powergraph.model.units import parse_quantity
 from powergraph.units_si import RPM_PER_RAD_S
 
 
-
 @dataclass(frozen=True)
 class BearingFriction:
     """Load-dependent bearing friction ``M = mu * F * bore / 2`` (``bore`` in mm)."""

@@ -113,11 +113,21 @@ def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     ratios = np.asarray(ratios, dtype=float)
     if ratios.ndim < forces.ndim:
         ratios = ratios[:, None]
-    for column, c in enumerate(element_stencil(ratios, factors)):
-        np.add.at(load, bodies[:, column], np.abs(c * forces))
-    own = np.where((bodies == frame)[(...,) + (None,) * (forces.ndim - 1)], -np.inf,
-                   load[bodies])
-    own = own.max(axis=1, initial=-np.inf)
+    stencil = element_stencil(ratios, factors)
+    if forces.ndim == 1:
+        for column, c in enumerate(stencil):
+            np.add.at(load, bodies[:, column], np.abs(c * forces))
+        own = np.where(bodies == frame, -np.inf, load[bodies]).max(axis=1, initial=-np.inf)
+    else:   # many points: a row operation per (element, body) beats np.add.at
+        for column, c in enumerate(stencil):
+            terms = np.abs(c * forces)
+            for k, body in enumerate(bodies[:, column].tolist()):
+                load[body] += terms[k]
+        own = np.full(forces.shape, -np.inf)
+        for k, triple in enumerate(bodies.tolist()):
+            for body in triple:
+                if body != frame:
+                    np.maximum(own[k], load[body], out=own[k])
     return np.where(np.isfinite(own), own, load.max(axis=0, initial=0.0))
 
 
@@ -151,6 +161,23 @@ def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     ...            np.array([1.0]), np.array([-1.0]), np.zeros(3), 0).tolist()
     [1]
     """
+    forces = np.asarray(forces, dtype=float)
+    if forces.ndim == 2:
+        # Every own scale is at most the sum of all torques: a force above the noise of
+        # that sum is not round-off, whatever its own scale; only the points with a force
+        # below it need their own scales.
+        ratio = np.asarray(ratios, dtype=float)
+        total = np.asarray(load, dtype=float).sum(axis=0)
+        for c in element_stencil(ratio if ratio.ndim == 2 else ratio[:, None], factors):
+            total = total + np.abs(c * forces).sum(axis=0)
+        unclear = np.flatnonzero(np.any(np.abs(forces) <= FORCE_NOISE * total, axis=0))
+        codes = driver_codes(forces, rel, np.zeros_like(forces))
+        if unclear.size:
+            pick = lambda a: np.asarray(a)[..., unclear] if np.ndim(a) == 2 else a  # noqa: E731
+            scales = own_scales(bodies, pick(ratios), forces[:, unclear], pick(factors),
+                                pick(load), frame)
+            codes[:, unclear] = driver_codes(forces[:, unclear], pick(rel), scales)
+        return codes
     scales = own_scales(bodies, ratios, forces, factors, load, frame)
     return driver_codes(forces, rel, scales)
 

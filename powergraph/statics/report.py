@@ -10,7 +10,6 @@ from powergraph.statics.result import PowerFlowResult
 from powergraph.units_si import RPM_PER_RAD_S
 
 
-
 def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
     """The keys of ``solve --json`` (docs/format.md), plus ``passes``,
     ``load_sharing_assumed``, ``lock`` (null, or why the train cannot move as asked:

@@ -72,9 +72,19 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     (0.98, -2.0, 20.0)
     """
     if extra_torques is None and needs_friction(model):
-        return solve_with_friction(model, lambda fixed, extra: solve(fixed, speeds, extra))
+        # the passes change efficiencies and bearing torques, never the motion: the speeds
+        # are solved once for the operating point
+        kin = solve_speeds(model, speeds)
+        return solve_with_friction(model, lambda fixed, extra: _solve(fixed, kin, extra))
     elements = elements_of(model)
-    kin = solve_speeds(model, speeds, elements=elements)
+    return _solve(model, solve_speeds(model, speeds, elements=elements), extra_torques,
+                  elements)
+
+
+def _solve(model: Model, kin: Kinematics, extra_torques: Mapping[str, float] | None,
+           elements: tuple[Element, ...] | None = None) -> PowerFlowResult:
+    """:func:`solve` at given speeds (constant efficiencies, known bearing torques)."""
+    elements = elements_of(model) if elements is None else elements
     loads = loads_of(model, kin)
     if extra_torques:
         loads = with_extra_torques(loads, extra_torques)

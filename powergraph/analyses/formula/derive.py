@@ -24,6 +24,7 @@ from powergraph.kinematics import Element, elements_of
 from powergraph.model.spec import Model
 from powergraph.statics import PowerFlowResult, solve
 from powergraph.statics.directions import factor_of
+from powergraph.statics.friction import loss_block_places
 
 
 def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) -> FormulaResult:
@@ -45,8 +46,9 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     Raises
     ------
     MethodNotApplicableError
-        Not one input and one output, more than one DOF, no input power, or a train whose
-        equations have no unique solution in independent symbols.
+        Not one input and one output, more than one DOF, no input power, load-dependent
+        losses (a friction law, bearing friction or drag: the formulas would drop them),
+        or a train whose equations have no unique solution in independent symbols.
     ModelError, SolveError
         From the numeric solve.
 
@@ -58,6 +60,7 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     1 + z_2*z_5/z_1
     """
     _check_ports(model)
+    _check_constant_losses(model)
     numeric = solve(model)
     _check_solved(numeric)
     elements = elements_of(model)
@@ -131,6 +134,17 @@ def _check_ports(model: Model) -> None:
         raise MethodNotApplicableError(
             f"closed forms are derived for one input and one output; this train has "
             f"{len(model.inputs)} input(s) and {len(model.outputs)} output(s)", "ports")
+
+
+def _check_constant_losses(model: Model) -> None:
+    """Closed forms take constant efficiencies: a load-dependent loss (a friction law, a
+    bearing's friction or drag) would silently vanish from them."""
+    places = loss_block_places(model)
+    if places:
+        raise MethodNotApplicableError(
+            "closed forms take constant mesh efficiencies; this loss depends on the load "
+            "(evaluate the train with solve, the efficiency map or the sweep of a model "
+            "with efficiencies)", places[0])
 
 
 def _check_solved(numeric: PowerFlowResult) -> None:

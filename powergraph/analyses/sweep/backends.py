@@ -13,10 +13,10 @@ external torques of the other bodies (the reactions). Every coefficient comes fr
   with ``lambdify`` (common-subexpression elimination): the closed form a designer would
   derive, for any train. :meth:`SymbolicBackend.closed_form` composes the whole solve of
   one direction pattern into one compiled function (:class:`ClosedForm`).
-- :class:`NumericBackend` builds ``(n, rows, cols)`` matrices and solves them with batched
-  ``numpy.linalg.solve`` — or, where a system is not square or is singular, with the
-  pseudo-inverse (the minimum-norm solution the single solver takes) and a residual check.
-  Slower, but it takes any train.
+- :class:`NumericBackend` builds ``(n, rows, cols)`` matrices and solves them batched and
+  scaled like the single solve (:func:`powergraph.linalg_batch.solve_square_batch`) — or,
+  where a system is not square, with the pseudo-inverse (the minimum-norm solution the
+  single solver takes) and a residual check. Slower, but it takes any train.
 """
 from __future__ import annotations
 
@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Callable, Sequence
 import numpy as np
 
 from powergraph.kinematics.elements import element_stencil
+from powergraph.linalg_batch import COND_LIMIT, solve_square_batch, structural_zeros
 from powergraph.statics.directions import factor_of, factors_for
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -183,7 +184,7 @@ class ClosedForm:
             return False
         target = out if valid.all() else type(out).empty(n, lay.n_elements)
         write_settled(lay, chunk, torques, rel, speeds, forces, factors, self.moving, target,
-                      self.passes)
+                      self.passes, read)
         if target is out:
             return True
         out.put(valid, target, valid)
@@ -287,25 +288,39 @@ def _length(values: list) -> int:
 def _batched_solve(matrix: np.ndarray, rhs: np.ndarray,
                    full_rank_needed: bool) -> tuple[np.ndarray, np.ndarray]:
     """Batched solve; ``bad`` where inconsistent, or rank-deficient when a full rank is
-    needed (speeds; loads of a statically determinate train)."""
+    needed (speeds; loads of a statically determinate train).
+
+    Square systems first set the unknowns their structure makes exactly 0
+    (:func:`~powergraph.linalg_batch.structural_zeros`: an idle gear's force), then are
+    solved scaled, each by its own unknowns, and judged regular on the scaled system (:func:`powergraph.linalg_batch.solve_square_batch`, the single solve's
+    procedure and limits); the others (load sharing not fixed by statics) take the
+    minimum-norm solution, with a residual check.
+    """
     with np.errstate(all="ignore"):
         finite = np.all(np.isfinite(matrix), axis=(1, 2)) & np.all(np.isfinite(rhs), axis=1)
         clean = np.where(finite[:, None, None], matrix, 0.0)
-        singular_values = np.linalg.svd(clean, compute_uv=False)
-        top = np.maximum(singular_values[:, :1], 1.0)
-        rank = np.sum(singular_values > RANK_TOLERANCE * top, axis=1)
-        square = matrix.shape[1] == matrix.shape[2]
-        full_rank = rank == matrix.shape[2]
         solution = np.full((matrix.shape[0], matrix.shape[2]), np.nan)
-        exact = finite & full_rank if square else np.zeros_like(finite)
-        if exact.any():
-            solution[exact] = np.linalg.solve(clean[exact], rhs[exact][..., None])[..., 0]
-        rest = finite & ~exact
-        if rest.any():
+        regular = np.zeros(matrix.shape[0], dtype=bool)
+        if matrix.shape[1] == matrix.shape[2] and finite.any():
+            zero, used = structural_zeros(np.any(clean[finite] != 0, axis=0),
+                                          np.all(rhs[finite] == 0, axis=0))
+            keep_rows, keep_cols = np.flatnonzero(~used), np.flatnonzero(~zero)
+            x, condition = solve_square_batch(clean[finite][:, keep_rows][:, :, keep_cols],
+                                              rhs[finite][:, keep_rows])
+            part = np.zeros((x.shape[0], matrix.shape[2]))
+            part[:, keep_cols] = x
+            solution[finite] = part
+            regular[finite] = (condition < COND_LIMIT) & np.all(np.isfinite(x), axis=1)
+        rest = finite & ~regular
+        if rest.any() and not (full_rank_needed and matrix.shape[1] == matrix.shape[2]):
+            singular_values = np.linalg.svd(clean[rest], compute_uv=False)
+            top = np.maximum(singular_values[:, :1], 1.0)
+            full_rank = np.sum(singular_values > RANK_TOLERANCE * top, axis=1) == \
+                matrix.shape[2]
             pinv = np.linalg.pinv(clean[rest], rcond=RANK_TOLERANCE)
             solution[rest] = (pinv @ rhs[rest][..., None])[..., 0]
-        residual = np.einsum("nij,nj->ni", clean, np.nan_to_num(solution)) - rhs
-        scale = np.maximum(1.0, np.max(np.abs(rhs), axis=1))
-        inconsistent = np.max(np.abs(residual), axis=1) > 1e-8 * scale
-        bad = ~finite | inconsistent | (full_rank_needed & ~full_rank)
-    return solution, bad
+            residual = np.einsum("nij,nj->ni", clean[rest], solution[rest]) - rhs[rest]
+            scale = np.maximum(1.0, np.max(np.abs(rhs[rest]), axis=1))
+            consistent = np.max(np.abs(residual), axis=1) <= 1e-8 * scale
+            regular[rest] = consistent & (full_rank | (not full_rank_needed))
+    return solution, ~regular

@@ -178,14 +178,16 @@ def solve_chunk(layout: "Layout", backend, chunk: Chunk, out: Outputs) -> None:
 
 def write_settled(layout: "Layout", chunk: Chunk, torques: list, rel: list, speeds: list,
                   forces: list, factors: list, moving: Sequence[int], out: Outputs,
-                  passes: int) -> None:
+                  passes: int, codes: np.ndarray | None = None) -> None:
     """Every result of ``chunk`` into ``out``, its variants settled on these ``forces``
     (each element's, then the reactions) with these ``factors`` of the ``moving``
-    elements (a closed form's answer, written like the general iteration's)."""
+    elements (a closed form's answer, written like the general iteration's); ``codes``,
+    when given, are every element's driver codes read from these forces."""
     state = _State(layout, None, chunk, torques, rel)
     state.moving = list(moving)
     state.eta = [chunk.efficiencies[k] for k in moving]
     state.forces, state.factors = list(forces), list(factors)
+    state.final_codes = codes
     out.status[:] = OK
     out.passes[:] = passes
     _outcome(layout, state, speeds, out)
@@ -243,6 +245,7 @@ class _State:
         self.inverse = [1.0 / eta for eta in self.eta]
         self.forces: list = []      # final, per element, then the reactions
         self.factors: list = []     # final, per moving element
+        self.final_codes = None     # every element's codes from the final forces, if known
 
     def solve(self, factors: list) -> tuple[list, np.ndarray]:
         """Forces and reactions with these factors of the moving elements."""
@@ -285,22 +288,26 @@ def element_codes(layout: "Layout", magnitudes: list, torques: list, rel: list,
     ``layout.unknown``; ``factors`` maps element -> factor (1 for the others).
     """
     n_el = layout.n_elements
-    size = max([np.size(v) for v in [*forces, *rel, *torques, *magnitudes,
-                                     *factors.values()]] + [1])
-    column = lambda value: np.broadcast_to(np.asarray(value, dtype=float), size)  # noqa: E731
-    lam = np.array([column(forces[k]) for k in range(n_el)])
-    factor = np.array([column(factors.get(k, 1.0)) for k in range(n_el)])
-    ratios = np.array([column(layout.signs[k] * np.asarray(magnitudes[k], dtype=float))
-                       for k in range(n_el)])
+    values = [*forces, *rel, *torques, *magnitudes, *factors.values()]
+    size = max([getattr(v, "size", 1) for v in values] + [1])
+
+    def rows(items) -> np.ndarray:
+        out = np.empty((len(items), size))
+        for k, item in enumerate(items):
+            out[k] = item
+        return out
+
+    lam = rows(forces[:n_el])
+    factor = rows([factors.get(k, 1.0) for k in range(n_el)])
+    ratios = rows([layout.signs[k] * magnitudes[k] for k in range(n_el)])
     load = np.zeros((layout.n_bodies, size))
     for spec, torque in zip(layout.loads, torques):
-        load[spec.body] += np.abs(column(torque))
+        load[spec.body] += np.abs(torque)
     for body, reaction in zip(layout.unknown, forces[n_el:]):
-        load[body] += np.abs(column(reaction))
+        load[body] += np.abs(reaction)
     codes = read_codes(np.array(layout.places, dtype=np.int64), ratios, lam, factor,
-                       np.array([column(r) for r in rel]), load, layout.frame)
-    scalar = not any(np.ndim(v) for v in [*forces, *rel, *torques, *magnitudes,
-                                          *factors.values()])
+                       rows(rel), load, layout.frame)
+    scalar = not any(np.ndim(v) for v in values)
     return codes[:, 0] if scalar else codes
 
 
@@ -406,7 +413,8 @@ def _losses_and_codes(layout: "Layout", state: _State, out: Outputs) -> None:
     from the final forces, as the single solver reports them)."""
     moving = {k: j for j, k in enumerate(state.moving)}
     out.total_loss[:] = 0.0
-    out.codes[:] = state.all_codes(state.forces, state.factors)
+    out.codes[:] = (state.all_codes(state.forces, state.factors)
+                    if state.final_codes is None else state.final_codes)
     for k in range(layout.n_elements):
         j = moving.get(k)
         if j is None:
