@@ -1,4 +1,5 @@
-"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]``."""
+"""``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
+[--mode NAME]``."""
 from __future__ import annotations
 
 import argparse
@@ -21,11 +22,19 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "paper's split/virtual power method, RV-type trains)")
     parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
                         help="override every mesh's basic efficiency")
+    parser.add_argument("--mode", metavar="NAME",
+                        help="solve the model in this mode of its modes table (docs/modes.md)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
+    if model.modes or args.mode is not None:
+        from powergraph.cli.cmd_modes import solve_one_mode
+
+        result = solve_one_mode(model, args.mode, args.method)
+        print_json(result.to_dict()) if args.json else print(result.text_report())
+        return 0
     if args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 

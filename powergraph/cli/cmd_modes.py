@@ -1,0 +1,67 @@
+"""``powergraph modes MODEL [--json] [-o FILE] [--mesh-efficiency E]``: the gear table
+(docs/modes.md); and the ``--mode`` option of ``solve``."""
+from __future__ import annotations
+
+import argparse
+
+from powergraph.cli.common import (
+    check_figure_path,
+    efficiency_arg,
+    load,
+    new_axes,
+    print_json,
+    save_figure,
+)
+from powergraph.errors import ModelError, UsageError
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("modes", help="gear table of a train with modes",
+                            description="Per mode: engaged elements, ratio, step, "
+                                        "efficiency forward and coasting, element torques, "
+                                        "slip speeds, drag; the spread (docs/modes.md).")
+    parser.add_argument("model", help="model file (YAML) with a modes table")
+    parser.add_argument("--json", action="store_true", help="print the JSON object")
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="write a chart of ratios and efficiencies (.png, .svg or .pdf)")
+    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+                        help="every mesh at E")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from powergraph.analyses.gear_table import gear_table
+
+    target = check_figure_path(args.output) if args.output else None
+    model = load(args.model, args.mesh_efficiency)
+    if not model.modes:
+        raise ModelError("the model has no modes table (docs/modes.md)", "modes")
+    table = gear_table(model)
+    print_json(table.to_dict()) if args.json else print(table.text_report())
+    if target is not None:
+        ax = new_axes((7.0, 4.2))
+        table.plot(ax=ax)
+        save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
+    return 0
+
+
+def solve_one_mode(model, mode: str | None, method: str = "virtual-power"):
+    """``solve --mode``: the model solved in ``mode`` (a ModeResult). A model with modes
+    needs ``--mode``; a model without cannot take it."""
+    if not model.modes:
+        raise UsageError(f"--mode {mode}: the model has no modes table")
+    if mode is None:
+        raise UsageError("the model has modes " + ", ".join(model.modes)
+                         + ": choose one with --mode NAME (or see them all with "
+                           "`powergraph modes`)")
+    if mode not in model.modes:
+        raise UsageError(f"--mode {mode}: unknown mode (the model's modes: "
+                         + ", ".join(model.modes) + ")")
+    if method != "virtual-power":
+        raise UsageError("--mode works with the virtual-power method")
+    from powergraph.statics.modes import solve_mode
+
+    result = solve_mode(model, mode)
+    if result.result is None:
+        raise ModelError(result.verdict, f"modes.{mode}")
+    return result
