@@ -74,6 +74,12 @@ def _model(data: Any, source: str | None) -> Model:
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
                   shift_elements=shift_elements, modes=modes,
                   mode=next(iter(modes), None))
+    if modes:
+        from powergraph.model.modes import resolve
+
+        # The default state (the first mode, freewheels holding); errors name the mode.
+        resolve(model, model.mode, {e.name: True for e in shift_elements
+                                    if e.kind == "freewheel"})
     check_topology(model)
     if model.has_bearing_losses:
         from powergraph.model.block_bearing import check_bearing_loads

@@ -141,7 +141,13 @@ def solve_mode(model: Model, mode: str, solve: Any = None) -> ModeResult:
     free = _deciding_freewheels(model, mode)
     for states in itertools.product((False, True), repeat=len(free)):
         choice = dict(zip((f.name for f in free), states))
-        derived = resolve(model, mode, choice)
+        try:
+            derived = resolve(model, mode, choice)
+        except ModelError as error:
+            if not any(choice.values()):
+                raise
+            notes.append(f"{_describe(choice)}: {error.message}")
+            continue
         dof = degrees_of_freedom(derived)
         if free and dof != need:
             notes.append(f"{_describe(choice)} leaves {dof} DOF")

@@ -1,0 +1,56 @@
+"""`powergraph modes` and `solve --mode`: output, JSON keys, refusals with exit 2."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from powergraph.cli.main import main
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+RAV = str(MODELS / "ravigneaux_4speed.yaml")
+SIMPSON = str(MODELS / "simpson_3speed.yaml")
+
+
+@pytest.mark.slow
+def test_modes_prints_the_gear_table(capsys) -> None:
+    assert main(["modes", RAV]) == 0
+    out = capsys.readouterr().out
+    assert "spread (forward) 3.6000" in out and "C1 B2" in out
+
+
+def test_modes_json(capsys) -> None:
+    assert main(["modes", SIMPSON, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [m["mode"] for m in data["modes"]] == ["1", "2", "3", "R"]
+    assert data["spread"] == pytest.approx(7 / 3, rel=1e-12)
+    assert data["modes"][0]["coast_efficiency"] is None
+
+
+@pytest.mark.slow
+def test_modes_writes_a_chart(tmp_path: Path, capsys) -> None:
+    target = tmp_path / "gears.png"
+    assert main(["modes", RAV, "-o", str(target)]) == 0
+    assert target.stat().st_size > 1000
+
+
+def test_solve_mode_json_has_the_solve_keys_and_the_elements(capsys) -> None:
+    assert main(["solve", SIMPSON, "--mode", "2", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {"ratio", "efficiency", "meshes", "flows", "mode", "shift_elements"} <= set(data)
+    assert data["mode"] == "2" and data["ratio"] == pytest.approx(4 / 3, rel=1e-12)
+    b1 = next(e for e in data["shift_elements"] if e["name"] == "B1")
+    assert b1["engaged"] and b1["slip_speed"] == 0.0
+
+
+@pytest.mark.parametrize("args, message", [
+    (["solve", SIMPSON], "the model has modes 1, 2, 3, R: choose one with --mode NAME"),
+    (["solve", SIMPSON, "--mode", "9"], "--mode 9: unknown mode"),
+    (["solve", str(MODELS / "rv40e.yaml"), "--mode", "1"], "the model has no modes table"),
+    (["modes", str(MODELS / "rv40e.yaml")], "modes: the model has no modes table"),
+])
+def test_refusals_exit_2_with_one_line(args, message, capsys) -> None:
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err and err.count("\n") == 1
