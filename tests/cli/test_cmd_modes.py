@@ -54,3 +54,8 @@ def test_refusals_exit_2_with_one_line(args, message, capsys) -> None:
     assert main(args) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err and err.count("\n") == 1
+
+
+def test_check_solves_every_mode(capsys) -> None:
+    assert main(["check", RAV]) == 0
+    assert "modes 1, 2, 3, 4, R: each solves with 1 DOF" in capsys.readouterr().out
