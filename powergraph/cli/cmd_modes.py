@@ -65,3 +65,33 @@ def solve_one_mode(model, mode: str | None, method: str = "virtual-power"):
     if result.result is None:
         raise ModelError(result.verdict, f"modes.{mode}")
     return result
+
+
+def compare_row_of(text: str, mesh_efficiency, compare_row):
+    """``compare``'s row of ``MODEL`` or ``MODEL:MODE``: a mode is compared as its gear
+    (freewheels decided), back-driven as coasting with its freewheels decided again."""
+    import dataclasses
+    from pathlib import Path
+
+    path, mode = text, None
+    if not Path(text).exists() and ":" in text:
+        path, mode = text.rsplit(":", 1)
+    model = load(path, mesh_efficiency)
+    if not model.modes and mode is None:
+        return compare_row(model)
+    if mode is None:
+        raise UsageError(f"{text}: the model has modes " + ", ".join(model.modes)
+                         + ": write MODEL:MODE")
+    from powergraph.analyses.gear_table import coasting
+
+    forward = solve_one_mode(model, mode)
+    gear = forward.result.model
+    row = compare_row(dataclasses.replace(gear, name=f"{model.name} [{mode}]"))
+    coast = coasting(model, forward)
+    if coast.result is None:
+        return dataclasses.replace(row, backdrive_efficiency=None,
+                                   backdrive_self_locking=None,
+                                   backdrive_note=f"coasting: {coast.verdict}")
+    return dataclasses.replace(row, backdrive_efficiency=coast.result.efficiency,
+                               backdrive_self_locking=coast.result.self_locking,
+                               backdrive_note=None)

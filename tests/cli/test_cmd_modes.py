@@ -59,3 +59,27 @@ def test_refusals_exit_2_with_one_line(args, message, capsys) -> None:
 def test_check_solves_every_mode(capsys) -> None:
     assert main(["check", RAV]) == 0
     assert "modes 1, 2, 3, 4, R: each solves with 1 DOF" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_lever_and_draw_take_a_mode(tmp_path: Path, capsys) -> None:
+    lever, flow = tmp_path / "lever.png", tmp_path / "flow.png"
+    assert main(["lever", RAV, "--mode", "2", "-o", str(lever)]) == 0
+    assert "s2     at -0.8333  w = 0 rad/s  (held)" in capsys.readouterr().out
+    assert main(["draw", RAV, "--mode", "R", "-o", str(flow)]) == 0
+    assert lever.stat().st_size > 1000 and flow.stat().st_size > 1000
+    assert main(["draw", RAV, "-o", str(flow)]) == 2
+
+
+def test_compare_takes_model_colon_mode(capsys) -> None:
+    """Ravigneaux 1st as a mode and as its own file: the same row (ratio 2.4, eta^3)."""
+    assert main(["compare", f"{RAV}:1", str(MODELS / "ravigneaux_first.yaml"), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert rows[0]["name"] == "Ravigneaux 4-speed [1]"
+    assert rows[0]["ratio"] == pytest.approx(2.4, rel=1e-12)
+    assert rows[0]["efficiency"] == pytest.approx(0.98 ** 3, rel=1e-9)
+    assert rows[0]["efficiency"] == pytest.approx(rows[1]["efficiency"], rel=1e-9)
+    assert main(["compare", f"{SIMPSON}:1", "--json"]) == 0
+    simpson = json.loads(capsys.readouterr().out)[0]
+    assert simpson["backdrive_efficiency"] is None
+    assert "no consistent freewheel state" in simpson["backdrive_note"]
