@@ -48,13 +48,13 @@ def run(args: argparse.Namespace) -> int:
 def solve_one_mode(model, mode: str | None, method: str = "virtual-power"):
     """``solve --mode``: the model solved in ``mode`` (a ModeResult). A model with modes
     needs ``--mode``; a model without cannot take it."""
-    if not model.modes:
+    if not model.modes and mode is not None:
         raise UsageError(f"--mode {mode}: the model has no modes table")
-    if mode is None:
+    if model.modes and mode is None:
         raise UsageError("the model has modes " + ", ".join(model.modes)
                          + ": choose one with --mode NAME (or see them all with "
                            "`powergraph modes`)")
-    if mode not in model.modes:
+    if model.modes and mode not in model.modes:
         raise UsageError(f"--mode {mode}: unknown mode (the model's modes: "
                          + ", ".join(model.modes) + ")")
     if method != "virtual-power":
@@ -63,7 +63,7 @@ def solve_one_mode(model, mode: str | None, method: str = "virtual-power"):
 
     result = solve_mode(model, mode)
     if result.result is None:
-        raise ModelError(result.verdict, f"modes.{mode}")
+        raise ModelError(result.verdict, f"modes.{mode}" if mode is not None else "links")
     return result
 
 

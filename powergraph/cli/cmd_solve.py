@@ -29,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
-    if model.modes or args.mode is not None:
+    if model.modes or args.mode is not None or _has_freewheels(model):
         from powergraph.cli.cmd_modes import solve_one_mode
 
         result = solve_one_mode(model, args.mode, args.method)
@@ -55,6 +55,10 @@ def run(args: argparse.Namespace) -> int:
             print()
             print(fluctuation.text_report())
     return 0
+
+
+def _has_freewheels(model) -> bool:
+    return any(e.kind == "freewheel" for e in model.shift_elements)
 
 
 def _cycloid_fluctuation(model):

@@ -73,9 +73,8 @@ def resolve(model: Model, mode: str | None,
     for element in model.shift_elements:
         links[element.index] = as_link(element, element.name in names)
     bodies, body_of = bodies_of(model.components, tuple(links))
-    label = mode if mode is not None else "+".join(sorted(names)) or "open"
     derived = dataclasses.replace(model, links=tuple(links), bodies=bodies,
-                                  body_of=body_of, mode=label)
+                                  body_of=body_of, mode=mode)
     try:
         check_topology(derived)
     except ModelError as error:

@@ -8,7 +8,8 @@ def mode_report(mode_result) -> str:
     if mode_result.result is not None:
         lines.append(mode_result.result.text_report().rstrip())
         lines.append("")
-    lines.append(f"mode {mode_result.mode}: engages "
+    head = f"mode {mode_result.mode}" if mode_result.mode is not None else "shift elements"
+    lines.append(f"{head}: engages "
                  f"{', '.join(mode_result.engaged) or 'nothing'} — {mode_result.verdict}")
     if mode_result.elements:
         lines.append(f"  {'element':<10} {'kind':<10} {'state':<12} {'torque N·m':>12} "

@@ -111,15 +111,16 @@ def designed_dof(model: Model) -> int:
     return max(1, sum(p.speed is not None for p in model.ports))
 
 
-def solve_mode(model: Model, mode: str, solve: Any = None) -> ModeResult:
+def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
     """Solve ``model`` in ``mode``.
 
     Parameters
     ----------
     model : Model
         A model with a ``modes`` table.
-    mode : str
-        A key of ``model.modes``.
+    mode : str or None
+        A key of ``model.modes``; None for a model without modes: its clutches and brakes
+        as their ``engaged`` says, its freewheels decided.
     solve : callable, optional
         The solver (default :func:`powergraph.statics.solve`).
 
@@ -135,14 +136,17 @@ def solve_mode(model: Model, mode: str, solve: Any = None) -> ModeResult:
     """
     if solve is None:
         from powergraph.statics.solver import solve
-    engaged = engaged_in(model, mode)
-    path, need = mode_path(mode), designed_dof(model)
+    engaged = engaged_in(model, mode) if mode is not None else tuple(
+        e.name for e in model.shift_elements if e.engaged and e.kind != "freewheel")
+    fixed = None if mode is not None else engaged
+    path = mode_path(mode) if mode is not None else "links"
+    need = designed_dof(model)
     trials, notes = [], []
-    free = _deciding_freewheels(model, mode)
+    free = _deciding_freewheels(model, mode, fixed)
     for states in itertools.product((False, True), repeat=len(free)):
         choice = dict(zip((f.name for f in free), states))
         try:
-            derived = resolve(model, mode, choice)
+            derived = resolve(model, mode, choice, fixed)
         except ModelError as error:
             if not any(choice.values()):
                 raise
@@ -189,9 +193,9 @@ def _finish(model, mode, engaged, result, states, verdict, path) -> ModeResult:
                       warnings=tuple(warnings))
 
 
-def _deciding_freewheels(model: Model, mode: str) -> list:
+def _deciding_freewheels(model: Model, mode: str | None, fixed) -> list:
     """Freewheels whose members the mode's clutches and brakes do not already join."""
-    base = resolve(model, mode)
+    base = resolve(model, mode, None, fixed)
     return [e for e in model.shift_elements if e.kind == "freewheel"
             and base.body_of[e.between[0]] != base.body_of[e.between[1]]]
 

@@ -296,3 +296,17 @@ def test_engaged_torques_balance_the_input_in_first_gear() -> None:
     torques = result.result.torques
     assert result.element("B2").torque == pytest.approx(-(torques["in"] + torques["r"]),
                                                         rel=1e-9)
+
+
+def test_without_a_modes_table_freewheels_are_decided_too() -> None:
+    """The two-speed without `modes`: C open by default, F decides: it holds (low gear),
+    as in the hand derivation above; with `engaged: true` on C it overruns."""
+    data = copy.deepcopy(TWO_SPEED)
+    del data["modes"]
+    low = solved(model_from_dict(data), None)
+    assert low.mode is None and low.freewheels == {"F": "holding"}
+    assert low.result.ratio == pytest.approx(4.0, rel=1e-12)
+    data["links"][2]["engaged"] = True
+    high = solved(model_from_dict(data), None)
+    assert high.freewheels == {"F": "overrunning"}
+    assert high.result.ratio == pytest.approx(1.0, rel=1e-12)
