@@ -86,7 +86,7 @@ def compare_row_of(text: str, mesh_efficiency, compare_row):
 
     forward = solve_one_mode(model, mode)
     gear = forward.result.model
-    row = compare_row(dataclasses.replace(gear, name=f"{model.name} [{mode}]"))
+    row = compare_row(gear)
     coast = coasting(model, forward)
     if coast.result is None:
         return dataclasses.replace(row, backdrive_efficiency=None,

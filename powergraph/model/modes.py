@@ -56,7 +56,8 @@ def resolve(model: Model, mode: str | None,
     -------
     Model
         A new model whose ``links`` hold each shift element as ``fixed`` (engaged) or
-        ``bearing`` (open), with its bodies rebuilt and ``mode`` set.
+        ``bearing`` (open), with its bodies rebuilt, ``mode`` set and the mode in its name
+        (``Simpson 3-speed [R]``).
 
     Raises
     ------
@@ -74,7 +75,8 @@ def resolve(model: Model, mode: str | None,
         links[element.index] = as_link(element, element.name in names)
     bodies, body_of = bodies_of(model.components, tuple(links))
     derived = dataclasses.replace(model, links=tuple(links), bodies=bodies,
-                                  body_of=body_of, mode=mode)
+                                  body_of=body_of, mode=mode,
+                                  name=model.name if mode is None else f"{model.name} [{mode}]")
     try:
         check_topology(derived)
     except ModelError as error:

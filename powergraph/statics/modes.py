@@ -225,6 +225,8 @@ def _states(model: Model, derived: Model, result, choice: Mapping[str, bool]) ->
         if link.type == "fixed":
             state = "holding" if element.kind == "freewheel" else "engaged"
             torque = joint_torque(result, element.index, torques)
+            if torque is not None and abs(torque) <= ZERO * _scale(result):
+                torque = 0.0        # round-off: the sign of a zero torque decides nothing
         else:
             state = "open" if element.kind != "freewheel" else (
                 "idle" if element.name not in choice else "overrunning")
