@@ -19,7 +19,6 @@ from typing import Any, Mapping
 
 from powergraph.kinematics.variants import backdriven
 from powergraph.model.spec import Model
-from powergraph.result import aligned_table
 from powergraph.statics.modes import ModeResult, solve_mode
 
 

@@ -48,3 +48,28 @@ def test_to_dict_has_the_documented_keys() -> None:
     assert set(data) == {"name", "modes", "spread", "warnings"}
     assert {"mode", "engaged", "ratio", "step", "efficiency", "coast_efficiency",
             "element_torques", "slip_speeds", "drag_loss", "verdict"} <= set(data["modes"][0])
+
+
+def test_drag_column_is_the_open_elements_drag() -> None:
+    """Two-speed 2K-H (k = 3), sun in at 100 rad/s, 1 kW; clutch C sun-ring with a drag of
+    0.5 N·m, brake B on the ring. Low (B): C slips at w_s - w_r = 100 rad/s: 50 W of drag.
+    High (C): B slips at the ring's speed (100 rad/s) but has no drag: 0 W."""
+    from powergraph.model import model_from_dict
+
+    model = model_from_dict({
+        "name": "two-speed", "description": "hand-derived",
+        "components": {0: {"role": "frame"}, "s": {"teeth": 24}, "p": {"teeth": 24},
+                       "r": {"teeth": 72, "internal": True}, "c": {}},
+        "links": [{"type": "mesh", "between": ["s", "p"], "carrier": "c"},
+                  {"type": "mesh", "between": ["p", "r"], "carrier": "c"},
+                  {"type": "clutch", "name": "C", "between": ["s", "r"],
+                   "drag": {"no_load_torque": 0.5}},
+                  {"type": "brake", "name": "B", "between": ["r", 0]}],
+        "modes": {"low": ["B"], "high": ["C"]},
+        "ports": [{"component": "s", "role": "input", "speed": 100.0, "power": 1000.0},
+                  {"component": "c", "role": "output"}]})
+    low, high = gear_table(model).rows
+    assert low.drag_loss == pytest.approx(50.0, rel=1e-12)
+    assert low.efficiency == pytest.approx(0.95, rel=1e-12)      # ideal meshes: 1 - 50/1000
+    assert low.slips["C"] == pytest.approx(1.0, rel=1e-12)
+    assert high.drag_loss == 0.0 and high.slips["B"] == pytest.approx(1.0, rel=1e-12)
