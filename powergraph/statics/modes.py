@@ -156,7 +156,7 @@ def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
         if free and dof != need:
             notes.append(f"{_describe(choice)} leaves {dof} DOF")
             continue
-        _check_dof(dof, need, engaged, path)
+        _check_dof(dof, need, engaged, path, lambda: _releasing(model, engaged, need))
         result = solve(derived)
         states_ = _states(model, derived, result, choice)
         bad = [_inconsistency(model.shift_element(n), s) for n, s in states_.items()
@@ -200,15 +200,31 @@ def _deciding_freewheels(model: Model, mode: str | None, fixed) -> list:
             and base.body_of[e.between[0]] != base.body_of[e.between[1]]]
 
 
-def _check_dof(dof: int, need: int, engaged: tuple[str, ...], path: str) -> None:
+def _check_dof(dof: int, need: int, engaged: tuple[str, ...], path: str,
+               releasing: Any = None) -> None:
     listing = ", ".join(engaged) or "nothing"
     if dof > need:
         more = dof - need
         raise KinematicsError(f"engages {listing}: leaves {dof} DOF, the train needs {more} "
                               f"more engaged element{'s' if more > 1 else ''}", path)
     if dof < need:
+        free = releasing() if releasing is not None else ()
+        hint = (f"; without {' or '.join(free)} it would have {need}" if free else "")
         raise KinematicsError(f"engages {listing}: these lock the train ({dof} DOF, it "
-                              f"needs {need})", path)
+                              f"needs {need}){hint}", path)
+
+
+def _releasing(model: Model, engaged: tuple[str, ...], need: int) -> list[str]:
+    """The engaged elements whose release alone gives the train its designed DOF."""
+    out = []
+    for name in engaged:
+        try:
+            derived = resolve(model, None, None, [n for n in engaged if n != name])
+        except ModelError:
+            continue
+        if degrees_of_freedom(derived) == need:
+            out.append(name)
+    return out
 
 
 def _states(model: Model, derived: Model, result, choice: Mapping[str, bool]) -> dict:
