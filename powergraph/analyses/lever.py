@@ -57,6 +57,13 @@ class LeverDiagram:
     mode: str | None
     levers: tuple[Lever, ...]
 
+    @property
+    def title(self) -> str:
+        """The train's name with the mode (once: a mode's model has it in its name)."""
+        name = self.model.name
+        return name if not self.mode or name.endswith(f"[{self.mode}]") else \
+            f"{name} — mode {self.mode}"
+
     def to_dict(self) -> dict[str, Any]:
         return {"name": self.model.name, "mode": self.mode,
                 "levers": [{"carrier": lev.carrier,
@@ -67,7 +74,7 @@ class LeverDiagram:
                            for lev in self.levers]}
 
     def text_report(self) -> str:
-        lines = [f"{self.model.name} — levers" + (f", mode {self.mode}" if self.mode else "")]
+        lines = [f"{self.title} — levers"]
         for lever in self.levers:
             lines.append(f"  carrier {lever.carrier}:")
             for n in lever.nodes:

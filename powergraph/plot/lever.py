@@ -54,7 +54,7 @@ def plot_levers(diagram, ax=None):
         for (x0, y0), (x1, y1) in zip(points, points[1:]):
             if x0 != x1:
                 ax.plot([x0, x1], [y0, y1], color="gray", linestyle="--", linewidth=0.8)
-    title = diagram.model.name + (f" — mode {diagram.mode}" if diagram.mode else "")
+    title = diagram.title
     ax.set_title(title + ("\narrows: speeds" if scale else ""), fontsize=10)
     ax.set_xlim(-1.0, (len(diagram.levers) - 1) * SPACING + 1.0)
     ax.margins(y=0.2)
