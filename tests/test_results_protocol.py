@@ -160,8 +160,32 @@ def _synthesis():
     return synthesize(4.0, graphs=classic_graphs(4), top=3)
 
 
+def _mode_result():
+    from powergraph.statics.modes import solve_mode
+
+    result = solve_mode(pg.load_model(MODELS / "simpson_3speed.yaml"), "1")
+    assert_conservation(result.result)
+    return result
+
+
+def _gear_table():
+    from powergraph.analyses.gear_table import gear_table
+
+    return gear_table(pg.load_model(MODELS / "ravigneaux_4speed.yaml"))
+
+
+def _lever_diagram():
+    from powergraph.analyses.lever import lever_diagram
+
+    result = _solved("simpson_first.yaml")
+    return lever_diagram(result.model, result.speeds)
+
+
 RESULTS = [
     ("PowerFlowResult", _power_flow, True),
+    ("ModeResult", _mode_result, True),
+    ("GearTable", _gear_table, True),
+    ("LeverDiagram", _lever_diagram, True),
     ("Wang2021Result", _wang2021, True),
     ("MethodComparison", _method_comparison, False),
     ("FigureData", _figure, True),

@@ -35,6 +35,8 @@ def run(args: argparse.Namespace) -> int:
     model = load(args.model)
     if args.strict and model.warnings:
         return refuse_caveats(model.warnings)
+    if model.modes:
+        return _check_modes(args, model)
     kin = solve_speeds(model)
     needed = loads_of(model, kin).needed
     solve(model)  # missing or contradictory loads, power directions
@@ -45,5 +47,19 @@ def run(args: argparse.Namespace) -> int:
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.bodies)} bodies, {meshes} mesh{'es' if meshes != 1 else ''}, "
           f"{kin.dof} DOF, {loads}")
+    print_caveats(model.warnings)
+    return 0
+
+
+def _check_modes(args: argparse.Namespace, model) -> int:
+    """A model with modes: every mode must solve (docs/modes.md)."""
+    from powergraph.cli.cmd_modes import solve_one_mode
+    from powergraph.statics.modes import designed_dof
+
+    for mode in model.modes:
+        solve_one_mode(model, mode)
+    print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
+          f"{len(model.shift_elements)} shift elements, modes {', '.join(model.modes)}: "
+          f"each solves with {designed_dof(model)} DOF")
     print_caveats(model.warnings)
     return 0

@@ -1,4 +1,4 @@
-"""``powergraph compare MODEL MODEL... [--json] [-o FILE] [--mesh-efficiency E]``."""
+"""``powergraph compare MODEL[:MODE] MODEL[:MODE]... [--json] [-o FILE] [--mesh-efficiency E]``."""
 from __future__ import annotations
 
 import argparse
@@ -18,7 +18,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                             description="Ratio, efficiency both ways, self-locking, "
                                         "circulating power and mesh rolling of several "
                                         "trains, one row each.")
-    parser.add_argument("models", nargs="+", metavar="MODEL", help="model files (YAML)")
+    parser.add_argument("models", nargs="+", metavar="MODEL",
+                        help="model files (YAML); MODEL:MODE for one mode of a model with "
+                             "modes (docs/modes.md)")
     parser.add_argument("--json", action="store_true", help="print a JSON list of rows")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write a grouped bar chart (.png, .svg or .pdf)")
@@ -31,7 +33,9 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.compare import ComparisonTable, compare_row
 
     target = check_figure_path(args.output) if args.output else None
-    table = ComparisonTable(tuple(compare_row(load(path, args.mesh_efficiency))
+    from powergraph.cli.cmd_modes import compare_row_of
+
+    table = ComparisonTable(tuple(compare_row_of(path, args.mesh_efficiency, compare_row)
                                   for path in args.models))
     if args.json:
         print_json(table.to_dict()["rows"])

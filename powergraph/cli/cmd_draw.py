@@ -1,4 +1,5 @@
-"""``powergraph draw MODEL -o FILE [--frame ID] [--method M] [--mesh-efficiency E]``.
+"""``powergraph draw MODEL -o FILE [--frame ID] [--method M] [--mesh-efficiency E]
+[--mode NAME]``.
 
 Draws the power-flow diagram (PNG, SVG or PDF by the suffix of FILE), written atomically:
 on any error no file (and no half-written file) is left. ``--frame ID`` draws the
@@ -32,6 +33,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "method; RV-type trains)")
     parser.add_argument("--mesh-efficiency", metavar="E",
                         help="override every mesh's basic efficiency")
+    parser.add_argument("--mode", metavar="NAME",
+                        help="draw the model in this mode of its modes table (docs/modes.md)")
     parser.add_argument("--dpi", default="150", metavar="N",
                         help=f"resolution of a PNG (dots per inch, {DPI_RANGE[0]}-"
                              f"{DPI_RANGE[1]}, default 150)")
@@ -42,7 +45,11 @@ def run(args: argparse.Namespace) -> int:
     target = check_figure_path(args.output)
     dpi = number_option(args.dpi, "--dpi", *DPI_RANGE)  # a huge figure exhausts memory
     model = load(args.model, args.mesh_efficiency)
-    if args.method == "wang2021":
+    if model.modes or args.mode is not None:
+        from powergraph.cli.cmd_modes import solve_one_mode
+
+        result = solve_one_mode(model, args.mode, args.method).result
+    elif args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 
         result = solve_wang2021(model)

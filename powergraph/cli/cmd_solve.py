@@ -1,6 +1,6 @@
 """``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
-[--backdrive] [--strict]`` (``--strict``: a model with warnings is refused before solving,
-exit 2)."""
+[--backdrive] [--mode NAME] [--strict]`` (``--strict``: a model with warnings is refused
+before solving, exit 2)."""
 from __future__ import annotations
 
 import argparse
@@ -25,6 +25,8 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="override every mesh's basic efficiency")
     add_strict(parser)
     _result_options(parser)
+    parser.add_argument("--mode", metavar="NAME",
+                        help="solve the model in this mode of its modes table (docs/modes.md)")
     parser.set_defaults(handler=run)
 
 
@@ -38,6 +40,12 @@ def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
     if args.strict and model.warnings:
         return refuse_caveats(model.warnings)
+    if model.modes or args.mode is not None or _has_freewheels(model):
+        from powergraph.cli.cmd_modes import solve_one_mode
+
+        result = solve_one_mode(model, args.mode, args.method)
+        print_json(result.to_dict()) if args.json else print(result.text_report())
+        return 0
     if args.backdrive:
         model = _backdriven(model)
     if args.method == "wang2021":
@@ -72,6 +80,10 @@ def _backdriven(model):
         raise UsageError("--backdrive needs a train with one input and one output port "
                          f"(this one has {len(model.inputs)} and {len(model.outputs)})")
     return backdriven(model, solve(model).input_power)
+
+
+def _has_freewheels(model) -> bool:
+    return any(e.kind == "freewheel" for e in model.shift_elements)
 
 
 def _cycloid_fluctuation(model):

@@ -79,9 +79,6 @@ def check_topology(model: Model) -> None:
             raise ModelError(f"{link.between[0]!r} and {link.between[1]!r} are one rigid body "
                              "(joined by fixed links), so they cannot mesh or couple",
                              f"{link.path}.between")
-        if link.type == "mesh" and model.body_of[link.carrier] in (a, b):
-            raise ModelError(f"the carrier {link.carrier!r} is rigidly joined to a gear of "
-                             "the mesh", f"{link.path}.carrier")
     for port in model.ports:
         if model.body_of[port.component] == model.frame_body:
             raise ModelError(f"component {port.component!r} is fixed to the frame, so it cannot "

@@ -33,6 +33,7 @@ from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_
                                            MAX_TEETH, MAX_TORQUE, MIN_RATIO, _EFFICIENCY,
                                            _geometry_shape, _integer, _length, _link,
                                            _number, _quantity, _ref, _text)
+from powergraph.model.schema_shift import MODES, SHIFT_LINKS
 
 _MESH = {
     "carrier": _ref("componentId", title="carrier",
@@ -202,10 +203,12 @@ MODEL_SCHEMA: dict[str, Any] = {
                                       "compare as strings.",
                        "additionalProperties": _ref("component")},
         "links": {"type": "array", "title": "links", "items": _ref("link"),
-                  "description": "The edges: meshes, fixed joints, couplings, bearings."},
+                  "description": "The edges: meshes, fixed joints, couplings, bearings, "
+                                 "clutches, brakes, freewheels."},
         "ports": {"type": "array", "title": "ports", "items": _ref("port"),
                   "description": "At least one input and one output."},
         "tolerances": _TOLERANCES,
+        "modes": MODES,
     },
     "additionalProperties": False,
     "required": ["name", "components", "links", "ports"],
@@ -233,6 +236,7 @@ MODEL_SCHEMA: dict[str, Any] = {
                            "carrier]); sets no speed; passes no power unless it has "
                            "friction or drag (docs/losses.md).",
                            {"friction": _ref("bearingFriction"), "drag": _ref("drag")}),
+                     *SHIFT_LINKS,
                  ]},
         "backlash": _BACKLASH,
         "cycloid": _CYCLOID,

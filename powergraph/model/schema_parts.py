@@ -15,7 +15,7 @@ MAX_LENGTH = 1e6       # mm
 MAX_TEETH = 100_000
 MAX_COUNT = 10_000
 MIN_RATIO, MAX_RATIO = 1e-6, 1e6
-LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
+LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "clutch", "brake", "freewheel")
 _UNIT_TEXT = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
 _SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm"}
 

@@ -14,6 +14,9 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
+#: Link types that are shift elements (docs/modes.md): resolved to ``fixed`` (engaged) or
+#: ``bearing`` (open: no constraint, only its drag) in ``Model.links``.
+SHIFT_TYPES = ("clutch", "brake", "freewheel")
 
 
 @dataclass(frozen=True)
@@ -69,6 +72,30 @@ class Link:
 
 
 @dataclass(frozen=True)
+class ShiftElement:
+    """A clutch, brake or freewheel (docs/modes.md), as written at ``links[index]``.
+
+    ``engaged`` is its state when the model is solved without a mode; ``holds`` (freewheels
+    only) is the sign of ``w_a - w_b`` it allows: ``positive`` lets ``a`` overrun ``b``
+    forward and holds it against turning backward relative to ``b``. ``drag`` (a
+    :class:`~powergraph.model.block_bearing.Drag`) acts in its slip speed while it is open.
+    """
+
+    index: int
+    kind: str
+    name: str
+    between: tuple[str, str]
+    raw_between: tuple[int | str, int | str]
+    engaged: bool = False
+    holds: str | None = None
+    drag: Any = None
+
+    @property
+    def path(self) -> str:
+        return f"links[{self.index}]"
+
+
+@dataclass(frozen=True)
 class Port:
     """Where power enters (``input``) or leaves (``output``) the train."""
 
@@ -110,6 +137,13 @@ class Model:
     #: Caveats found while reading the model (powergraph.errors.Caveat): a speed without a
     #: unit, a planetary set that cannot be assembled... The model is still valid.
     warnings: tuple = field(default=(), compare=False)
+    #: Clutches, brakes and freewheels (ShiftElement), in file order; ``links`` holds each
+    #: one resolved to its current state (``fixed`` engaged, ``bearing`` open).
+    shift_elements: tuple = ()
+    #: ``{mode name: engaged shift-element names}`` (docs/modes.md); empty without modes.
+    modes: Mapping[str, tuple[str, ...]] = field(default_factory=lambda: MappingProxyType({}))
+    #: The mode this model was resolved in (powergraph.model.modes.resolve), else None.
+    mode: str | None = None
 
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
@@ -149,6 +183,17 @@ class Model:
 
     def raw_id(self, component: str) -> int | str:
         return self.components[component].raw_id
+
+    def shift_element(self, name: str) -> "ShiftElement":
+        """The shift element called ``name`` (KeyError when there is none)."""
+        return {e.name: e for e in self.shift_elements}[name]
+
+    def in_mode(self, name: str) -> "Model":
+        """This train in mode ``name``: its engaged elements rigid, the others open
+        (:func:`powergraph.model.modes.resolve`; freewheels open)."""
+        from powergraph.model.modes import resolve
+
+        return resolve(self, name)
 
     def with_mesh_efficiency(self, efficiency: float) -> "Model":
         """A copy in which every mesh has basic efficiency ``efficiency``.

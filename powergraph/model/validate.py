@@ -15,7 +15,7 @@ from typing import Any, Mapping
 
 from powergraph.errors import Caveat, ModelError
 from powergraph.model.conform import check_document, conform
-from powergraph.model.spec import Component, Link, Model, Port
+from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
 from powergraph.model.yaml_loader import brief, gc_paused
 
@@ -64,6 +64,7 @@ def _model(data: Any, source: str | None) -> Model:
     frame = next(c.id for c in components.values() if c.is_frame)
     links = tuple(_link(raw, i, components, frame, default_eta)
                   for i, raw in enumerate(data["links"]))
+    links, shift_elements, modes = _shift_elements(data, links, components, frame)
     caveats: list[Caveat] = []  # other checks append theirs
     ports = _ports(data["ports"], components, caveats)
     from powergraph.model.graph import bodies_of, check_topology
@@ -72,7 +73,14 @@ def _model(data: Any, source: str | None) -> Model:
     model = Model(name=_text(data["name"]), description=_text(data.get("description")),
                   components=MappingProxyType(components), links=links, ports=ports,
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
-                  warnings=tuple(caveats))
+                  shift_elements=shift_elements, modes=modes,
+                  mode=next(iter(modes), None), warnings=tuple(caveats))
+    if modes:
+        from powergraph.model.modes import resolve
+
+        # The default state (the first mode, freewheels holding); errors name the mode.
+        resolve(model, model.mode, {e.name: True for e in shift_elements
+                                    if e.kind == "freewheel"})
     check_topology(model)
     if model.has_bearing_losses:
         from powergraph.model.block_bearing import check_bearing_loads
@@ -87,6 +95,38 @@ def _model(data: Any, source: str | None) -> Model:
         model = dataclasses.replace(model, tolerances=validate_tolerances(data["tolerances"],
                                                                          model))
     return model
+
+
+def _shift_elements(data: Mapping, links: tuple, components: Mapping[str, Component],
+                    frame: str) -> tuple[tuple, tuple, Any]:
+    """Clutches, brakes and freewheels, each resolved in ``links`` to its default state,
+    and the modes table (docs/modes.md)."""
+    if not any(link is None for link in links):
+        if "modes" in data:
+            raise ModelError("a modes table needs shift elements (clutch, brake or freewheel "
+                             "links)", "modes")
+        return links, (), MappingProxyType({})
+    from powergraph.model.shift import as_link, check_names, read_modes, shift_element
+
+    elements = tuple(shift_element(raw, i, _pair(raw, i, components), components, frame)
+                     for i, (raw, link) in enumerate(zip(data["links"], links))
+                     if link is None)
+    check_names(elements)
+    modes = read_modes(data["modes"], elements) if "modes" in data else MappingProxyType({})
+    # The state without a mode: each element's `engaged`; with modes, the first mode with
+    # its freewheels holding (docs/modes.md).
+    first = set(next(iter(modes.values()))) if modes else None
+    resolved = list(links)
+    for element in elements:
+        on = element.engaged if first is None else (
+            element.name in first or element.kind == "freewheel")
+        resolved[element.index] = as_link(element, on)
+    return tuple(resolved), elements, modes
+
+
+def _pair(raw: Mapping, index: int, components: Mapping[str, Component]) -> tuple[str, str]:
+    return tuple(_ref(x, components, f"links[{index}].between[{i}]")  # type: ignore[return-value]
+                 for i, x in enumerate(raw["between"]))
 
 
 def _text(value: Any) -> str | None:
@@ -141,12 +181,15 @@ def _ref(raw: Any, components: Mapping[str, Component], path: str) -> str:
 
 
 def _link(raw: Mapping, index: int, components: Mapping[str, Component], frame: str,
-          default_eta: float) -> Link:
+          default_eta: float) -> Link | None:
+    """The link at ``links[index]``; None for a shift element (read by _shift_elements)."""
     path, kind, between = f"links[{index}]", raw["type"], raw["between"]
     a, b = (_ref(x, components, f"{path}.between[{i}]") for i, x in enumerate(between))
     if a == b:
         what = "a gear cannot mesh with itself" if kind == "mesh" else "a link needs two components"
         raise ModelError(f"{what} ({a!r} twice)", f"{path}.between")
+    if kind in SHIFT_TYPES:
+        return None
     fields: dict[str, Any] = {}
     if kind == "mesh":
         fields = _mesh_fields(raw, path, (a, b), components, frame, default_eta)

@@ -1,0 +1,143 @@
+"""The gear table of a train with modes (docs/modes.md): per mode the engaged elements,
+ratio, step to the next forward gear, efficiency forward and coasting (back-driven), the
+torque of each engaged element over the input torque, the slip speed of each open one
+over the input speed, the drag, and the verdict; the spread of the forward gears.
+
+Examples
+--------
+>>> from powergraph.model import load_model
+>>> table = gear_table(load_model("models/ravigneaux_4speed.yaml"))   # doctest: +SKIP
+>>> [round(r.ratio, 4) for r in table.rows], round(table.spread, 4)   # doctest: +SKIP
+([2.4, 1.4667, 1.0, 0.6667, -2.0], 3.6)
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any, Mapping
+
+from powergraph.kinematics.variants import backdriven
+from powergraph.model.spec import Model
+from powergraph.statics.modes import ModeResult, solve_mode
+
+
+@dataclass(frozen=True)
+class GearRow:
+    """One mode of the table. Ratios are input over output speed; ``step`` is this
+    forward gear's ratio over the next forward gear's (None for the last and reverse);
+    ``torques`` engaged element torque / input torque, ``slips`` open element slip /
+    input speed; ``coast_efficiency`` None when coasting has no consistent state
+    (``coast_verdict`` says why: a freewheel overruns)."""
+
+    mode: str
+    engaged: tuple[str, ...]
+    ratio: float
+    step: float | None
+    efficiency: float
+    coast_efficiency: float | None
+    coast_verdict: str
+    torques: Mapping[str, float | None]
+    slips: Mapping[str, float]
+    drag_loss: float
+    freewheels: Mapping[str, str]
+    verdict: str
+    warnings: tuple = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"mode": self.mode, "engaged": list(self.engaged), "ratio": self.ratio,
+                "step": self.step, "efficiency": self.efficiency,
+                "coast_efficiency": self.coast_efficiency,
+                "coast_verdict": self.coast_verdict, "element_torques": dict(self.torques),
+                "slip_speeds": dict(self.slips), "drag_loss": self.drag_loss,
+                "freewheels": dict(self.freewheels), "verdict": self.verdict,
+                "warnings": [str(w) for w in self.warnings]}
+
+
+@dataclass(frozen=True)
+class GearTable:
+    """Every mode of a train; follows the result protocol."""
+
+    model: Model = field(repr=False, compare=False)
+    rows: tuple[GearRow, ...]
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    @property
+    def spread(self) -> float | None:
+        """Largest over smallest forward ratio (None with fewer than one forward gear)."""
+        forward = [r.ratio for r in self.rows if r.ratio > 0]
+        return max(forward) / min(forward) if forward else None
+
+    @property
+    def warnings(self) -> tuple:
+        return tuple(w for r in self.rows for w in r.warnings)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "modes": [r.to_dict() for r in self.rows],
+                "spread": self.spread, "warnings": [str(w) for w in self.warnings]}
+
+    def text_report(self) -> str:
+        from powergraph.analyses.gear_table_report import gear_table_report
+
+        return gear_table_report(self)
+
+    def plot(self, ax: Any = None, **kwargs: Any):
+        from powergraph.plot.gear_table import plot_gear_table
+
+        return plot_gear_table(self, ax=ax, **kwargs)
+
+
+def gear_table(model: Model, solve: Any = None) -> GearTable:
+    """Solve every mode of ``model`` forward and coasting.
+
+    Parameters
+    ----------
+    model : Model
+        A model with a ``modes`` table (one input, one output).
+    solve : callable, optional
+        The solver (default :func:`powergraph.statics.solve`).
+
+    Raises
+    ------
+    ModelError
+        ``modes.NAME: ...`` for the first mode that cannot be solved (docs/modes.md).
+    """
+    rows = [_row(model, mode, solve) for mode in model.modes]
+    forward = [i for i, r in enumerate(rows) if r.ratio > 0]
+    for i, j in zip(forward, forward[1:]):
+        rows[i] = dataclasses.replace(rows[i], step=rows[i].ratio / rows[j].ratio)
+    return GearTable(model=model, rows=tuple(rows))
+
+
+def _row(model: Model, mode: str, solve: Any) -> GearRow:
+    forward = solve_mode(model, mode, solve)
+    if forward.result is None:
+        from powergraph.errors import ModelError
+
+        raise ModelError(forward.verdict, f"modes.{mode}")
+    result = forward.result
+    kin = result.kinematics
+    w_in = kin.speed(model.inputs[0].component)
+    t_in = result.external_torques[result.model.body_of[model.inputs[0].component]]
+    coast = coasting(model, forward, solve)
+    torques = {e.name: (None if e.torque is None else e.torque / t_in)
+               for e in forward.elements if e.engaged}
+    slips = {e.name: e.slip_speed / w_in for e in forward.elements if not e.engaged}
+    return GearRow(mode=mode, engaged=forward.engaged, ratio=result.ratio, step=None,
+                   efficiency=result.efficiency,
+                   coast_efficiency=None if coast.result is None else coast.result.efficiency,
+                   coast_verdict=coast.verdict, torques=MappingProxyType(torques),
+                   slips=MappingProxyType(slips),
+                   drag_loss=sum(e.drag_loss for e in forward.elements),
+                   freewheels=forward.freewheels, verdict=forward.verdict,
+                   warnings=forward.warnings)
+
+
+def coasting(model: Model, forward: ModeResult, solve: Any = None) -> ModeResult:
+    """The mode back-driven (the output drives, same motion and power: coasting), with its
+    freewheels decided again."""
+    ports = backdriven(forward.result.model).ports
+    return solve_mode(dataclasses.replace(model, ports=ports), forward.mode, solve)

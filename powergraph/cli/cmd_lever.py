@@ -1,0 +1,42 @@
+"""``powergraph lever MODEL -o FILE [--mode NAME] [--json]``: lever diagrams of the
+planetary sets, with the speeds of a mode (docs/modes.md)."""
+from __future__ import annotations
+
+import argparse
+
+from powergraph.cli.common import check_figure_path, load, new_axes, print_json, save_figure
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    parser = sub.add_parser("lever", help="lever diagrams of the planetary sets",
+                            description="Each planetary set as a vertical lever (nodes "
+                                        "spaced by tooth numbers), held members grounded, "
+                                        "the speeds of a mode as arrows (docs/modes.md).")
+    parser.add_argument("model", help="model file (YAML)")
+    parser.add_argument("-o", "--output", metavar="FILE",
+                        help="figure file (.png, .svg or .pdf)")
+    parser.add_argument("--mode", metavar="NAME", help="the mode whose speeds are drawn")
+    parser.add_argument("--json", action="store_true", help="print the levers as JSON")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from powergraph.analyses.lever import lever_diagram
+
+    target = check_figure_path(args.output) if args.output else None
+    model = load(args.model)
+    if model.modes or args.mode is not None:
+        from powergraph.cli.cmd_modes import solve_one_mode
+
+        result = solve_one_mode(model, args.mode).result
+    else:
+        from powergraph.statics import solve
+
+        result = solve(model)
+    diagram = lever_diagram(result.model, result.speeds, args.mode)
+    print_json(diagram.to_dict()) if args.json else print(diagram.text_report())
+    if target is not None:
+        ax = new_axes((max(4.0, 2.2 * len(diagram.levers) + 1), 5.0))
+        diagram.plot(ax=ax)
+        save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
+    return 0

@@ -1,0 +1,47 @@
+"""Chart of a gear table (powergraph.analyses.gear_table): ratio per mode as bars,
+efficiency forward and coasting as markers on a second axis."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def plot_gear_table(table, ax=None):
+    """Bars of |ratio| per mode (reverse hatched), efficiencies on the right axis.
+
+    Parameters
+    ----------
+    table : GearTable
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model                          # doctest: +SKIP
+    >>> from powergraph.analyses.gear_table import gear_table            # doctest: +SKIP
+    >>> ax = gear_table(load_model("models/zf8hp_8speed.yaml")).plot()   # doctest: +SKIP
+    """
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots(figsize=(7.0, 4.2))
+    rows = table.rows
+    x = np.arange(len(rows))
+    ratios = [abs(r.ratio) for r in rows]
+    bars = ax.bar(x, ratios, color=["#4c72b0" if r.ratio > 0 else "#dd8452" for r in rows],
+                  hatch=None)
+    ax.bar_label(bars, labels=[f"{r.ratio:.3f}" for r in rows], fontsize=7, padding=2)
+    ax.set_xticks(x, [r.mode for r in rows])
+    ax.set_xlabel("mode")
+    ax.set_ylabel("|ratio| (input/output speed); orange: reverse")
+    right = ax.twinx()
+    right.plot(x, [100 * r.efficiency for r in rows], "o-", color="black", label="forward")
+    right.plot(x, [np.nan if r.coast_efficiency is None else 100 * r.coast_efficiency
+                   for r in rows], "s--", color="gray", label="coasting")
+    right.set_ylabel("efficiency (%)")
+    right.legend(fontsize=8, loc="lower right")
+    spread = table.spread
+    ax.set_title(f"{table.name}" + (f" — spread {spread:.3f}" if spread else ""))
+    return ax

@@ -1,0 +1,75 @@
+"""The gear table (powergraph.analyses.gear_table): steps and spread from the closed-form
+ratios, coasting, element torques over the input torque."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from powergraph.analyses.gear_table import gear_table
+from powergraph.model import load_model
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+# Ravigneaux 4-speed closed forms (models/ravigneaux_4speed.yaml): z_s1 30, z_s2 36, z_r 72.
+RATIOS = {"1": 72 / 30, "2": 72 * 66 / (30 * 108), "3": 1.0, "4": 72 / 108, "R": -2.0}
+
+
+def test_ravigneaux_steps_and_spread_follow_the_closed_forms() -> None:
+    table = gear_table(load_model(MODELS / "ravigneaux_4speed.yaml"))
+    assert [r.mode for r in table.rows] == list(RATIOS)
+    assert [r.ratio for r in table.rows] == pytest.approx(list(RATIOS.values()), rel=1e-12)
+    forward = ["1", "2", "3", "4"]
+    steps = {m: RATIOS[m] / RATIOS[n] for m, n in zip(forward, forward[1:])}
+    assert {r.mode: r.step for r in table.rows} == pytest.approx(
+        {**steps, "4": None, "R": None}, rel=1e-12)
+    assert table.spread == pytest.approx(RATIOS["1"] / RATIOS["4"], rel=1e-12)
+    # C1 passes the whole input torque in 1st and 2nd (it is the input's only path)
+    assert table.rows[0].torques["C1"] == pytest.approx(-1.0, rel=1e-12)
+    # direct drive: efficiency 1 both ways (a locked set has no loss)
+    assert table.rows[2].efficiency == pytest.approx(1.0, rel=1e-12)
+    assert table.rows[2].coast_efficiency == pytest.approx(1.0, rel=1e-12)
+
+
+def test_simpson_first_gear_cannot_coast_through_its_freewheel() -> None:
+    table = gear_table(load_model(MODELS / "simpson_3speed.yaml"))
+    first = table.rows[0]
+    assert first.freewheels == {"F1": "holding"}
+    assert first.coast_efficiency is None
+    assert "no consistent freewheel state" in first.coast_verdict
+    second = table.rows[1]
+    assert second.freewheels == {"F1": "overrunning"}
+    # 2nd: the rear carrier turns at w_out k/(1 + k) = w_in (3/4)/(4/3) = 0.5625 w_in
+    assert second.slips["F1"] == pytest.approx(0.75 / (4 / 3), rel=1e-12)
+    assert 0 < second.coast_efficiency < 1
+
+
+def test_to_dict_has_the_documented_keys() -> None:
+    data = gear_table(load_model(MODELS / "ravigneaux_4speed.yaml")).to_dict()
+    assert set(data) == {"name", "modes", "spread", "warnings"}
+    assert {"mode", "engaged", "ratio", "step", "efficiency", "coast_efficiency",
+            "element_torques", "slip_speeds", "drag_loss", "verdict"} <= set(data["modes"][0])
+
+
+def test_drag_column_is_the_open_elements_drag() -> None:
+    """Two-speed 2K-H (k = 3), sun in at 100 rad/s, 1 kW; clutch C sun-ring with a drag of
+    0.5 N·m, brake B on the ring. Low (B): C slips at w_s - w_r = 100 rad/s: 50 W of drag.
+    High (C): B slips at the ring's speed (100 rad/s) but has no drag: 0 W."""
+    from powergraph.model import model_from_dict
+
+    model = model_from_dict({
+        "name": "two-speed", "description": "hand-derived",
+        "components": {0: {"role": "frame"}, "s": {"teeth": 24}, "p": {"teeth": 24},
+                       "r": {"teeth": 72, "internal": True}, "c": {}},
+        "links": [{"type": "mesh", "between": ["s", "p"], "carrier": "c"},
+                  {"type": "mesh", "between": ["p", "r"], "carrier": "c"},
+                  {"type": "clutch", "name": "C", "between": ["s", "r"],
+                   "drag": {"no_load_torque": 0.5}},
+                  {"type": "brake", "name": "B", "between": ["r", 0]}],
+        "modes": {"low": ["B"], "high": ["C"]},
+        "ports": [{"component": "s", "role": "input", "speed": 100.0, "power": 1000.0},
+                  {"component": "c", "role": "output"}]})
+    low, high = gear_table(model).rows
+    assert low.drag_loss == pytest.approx(50.0, rel=1e-12)
+    assert low.efficiency == pytest.approx(0.95, rel=1e-12)      # ideal meshes: 1 - 50/1000
+    assert low.slips["C"] == pytest.approx(1.0, rel=1e-12)
+    assert high.drag_loss == 0.0 and high.slips["B"] == pytest.approx(1.0, rel=1e-12)
