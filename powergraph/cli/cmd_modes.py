@@ -6,7 +6,6 @@ import argparse
 
 from powergraph.cli.common import (
     check_figure_path,
-    efficiency_arg,
     load,
     new_axes,
     print_json,
@@ -24,7 +23,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="print the JSON object")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="write a chart of ratios and efficiencies (.png, .svg or .pdf)")
-    parser.add_argument("--mesh-efficiency", type=efficiency_arg, metavar="E",
+    parser.add_argument("--mesh-efficiency", metavar="E",
                         help="every mesh at E")
     parser.set_defaults(handler=run)
 

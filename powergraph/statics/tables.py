@@ -8,7 +8,7 @@ says so when it is missing). ``PowerFlowResult.to_dataframe(what)`` is this func
 Examples
 --------
 >>> import powergraph as pg
->>> result = pg.solve(pg.load_model("models/rv40e.yaml"))
+>>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))
 >>> [round(row["virtual_power_w"]) for row in records(result, "meshes")]
 [2251, 24710]
 >>> round(to_dataframe(result, "speeds").loc[1, "rpm"], 6)          # doctest: +SKIP

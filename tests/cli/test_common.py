@@ -39,6 +39,8 @@ WRITERS = [
     (["map", "{missing}", "--torque", "100", "--speed", "1000"], "-o", "figure"),
     (["enumerate", "--links", "x"], "-o", "folder"),
     (["synthesize", "--ratio", "x"], "-o", "folder"),
+    (["modes", "{missing}"], "-o", "figure"),
+    (["lever", "{missing}"], "-o", "figure"),
 ]
 NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out"}
 

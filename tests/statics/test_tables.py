@@ -16,7 +16,7 @@ from powergraph.errors import UsageError
 from powergraph.statics.tables import records, to_dataframe
 from powergraph.testing import assert_conservation
 
-RV40E = Path(__file__).resolve().parents[2] / "models" / "rv40e.yaml"
+RV40E = Path(__file__).resolve().parents[2] / "models" / "rv40e_wang2021.yaml"
 
 
 @pytest.fixture(scope="module")
