@@ -24,6 +24,7 @@ from collections import defaultdict
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+from powergraph.format import format_number
 from powergraph.kinematics.elements import willis_ratio
 from powergraph.model.spec import Model
 
@@ -75,10 +76,12 @@ class LeverDiagram:
 
     def text_report(self) -> str:
         lines = [f"{self.title} — levers"]
+        zero = 1e-9 * max((abs(n.speed) for lever in self.levers for n in lever.nodes
+                           if n.speed is not None), default=0.0)  # round-off: no -0
         for lever in self.levers:
             lines.append(f"  carrier {lever.carrier}:")
             for n in lever.nodes:
-                speed = "" if n.speed is None else f"  w = {n.speed:.6g} rad/s"
+                speed = "" if n.speed is None else f"  w = {format_number(n.speed, 6, zero)} rad/s"
                 lines.append(f"    {n.component:<6} at {n.position:+.4f}{speed}"
                              + ("  (held)" if n.grounded else ""))
         return "\n".join(lines)

@@ -37,11 +37,19 @@ def plot_gear_table(table, ax=None):
     ax.set_xlabel("mode")
     ax.set_ylabel("|ratio| (input/output speed); orange: reverse")
     right = ax.twinx()
-    right.plot(x, [100 * r.efficiency for r in rows], "o-", color="black", label="forward")
-    right.plot(x, [np.nan if r.coast_efficiency is None else 100 * r.coast_efficiency
-                   for r in rows], "s--", color="gray", label="coasting")
+    # Forward gears joined in their order; a reverse gear is a point of its own.
+    groups = [[i for i, r in enumerate(rows) if (r.ratio > 0) == sign] for sign in (True, False)]
+    for k, index in enumerate(groups):
+        style = "-" if k == 0 else ""
+        right.plot(index, [100 * rows[i].efficiency for i in index], "o" + style,
+                   color="black", label=None if k else "efficiency, driving")
+        right.plot(index, [np.nan if rows[i].coast_efficiency is None
+                           else 100 * rows[i].coast_efficiency for i in index],
+                   "s--" if k == 0 else "s", color="gray",
+                   label=None if k else "efficiency, coasting")
     right.set_ylabel("efficiency (%)")
-    right.legend(fontsize=8, loc="lower right")
+    right.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
+                 frameon=False)
     spread = table.spread
     ax.set_title(f"{table.name}" + (f" — spread {spread:.3f}" if spread else ""))
     return ax
