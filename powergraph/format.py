@@ -213,3 +213,61 @@ def pad(text: str, width: int, right: bool = False) -> str:
     """``text`` padded with spaces to ``width`` display columns."""
     fill = " " * max(0, width - display_width(text))
     return fill + text if right else text + fill
+
+
+def table(rows: Sequence[Sequence[str]], numeric: set[int], indent: str = "  ") -> list[str]:
+    """:func:`aligned_table` without rules, each line indented: the solve report's tables.
+
+    >>> table([["name", "kW"], ["齿轮", "1.5"]], {1})
+    ['  name   kW', '  齿轮  1.5']
+    """
+    return [(indent + line).rstrip() for line in aligned_table([list(r) for r in rows],
+                                                                numeric, rules_after=())]
+
+
+def power_unit(values: Sequence[float]) -> tuple[str, float]:
+    """The unit (W, kW or MW) that fits the largest of ``values``, and its scale.
+
+    >>> power_unit([2270.0, 652.3, 1.5]), power_unit([0.5])
+    (('kW', 1000.0), ('W', 1.0))
+    """
+    largest = max((abs(v) for v in values if math.isfinite(v)), default=0.0)
+    for unit, scale in reversed(POWER_UNITS[1:]):
+        if largest >= scale or unit == "W":
+            return unit, scale
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def column(values: Sequence[float], scale: float = 1.0, significant: int = 6) -> list[str]:
+    """``values / scale`` with one number of decimals for the whole column (the largest
+    value keeps ``significant`` digits), thousands separated; zero never prints as -0.
+
+    >>> column([2270.0, 652.3, 1.5], 1e3)
+    ['2.27000', '0.65230', '0.00150']
+    >>> column([-0.0, -1e-20, 1500.0])
+    ['0.00', '0.00', '1,500.00']
+    """
+    scaled = [v / scale for v in values]
+    largest = max((abs(v) for v in scaled if math.isfinite(v)), default=0.0)
+    digits = math.floor(math.log10(largest)) + 1 if largest > 0 else 1
+    decimals = max(0, significant - digits)
+    return [format_fixed(v, decimals) if math.isfinite(v) or math.isnan(v)
+            else ("inf" if v > 0 else "-inf") for v in scaled]
+
+
+def ratio_text(ratio: float | None) -> str | None:
+    """:func:`format_ratio` of the size of ``ratio`` (6 digits), with ``output reversed``
+    when the output turns the other way: the solve report's ratio line.
+
+    >>> ratio_text(121.0), ratio_text(0.01), ratio_text(-119.0)
+    ('121 : 1', '1 : 100', '119 : 1, output reversed')
+    """
+    if ratio is None:
+        return None
+    if math.isnan(ratio):
+        return "undefined"
+    if math.isinf(ratio):
+        return "output at rest"
+    if ratio == 0:
+        return "input at rest"
+    return format_ratio(abs(ratio), 6) + (", output reversed" if ratio < 0 else "")

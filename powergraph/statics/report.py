@@ -5,7 +5,7 @@ import math
 import textwrap
 from typing import Any
 
-from powergraph.statics.columns import column, power_unit, ratio_text, table
+from powergraph.format import column, power_unit, ratio_text, table
 from powergraph.statics.result import PowerFlowResult
 from powergraph.units_si import RPM_PER_RAD_S
 

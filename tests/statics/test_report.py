@@ -1,4 +1,4 @@
-"""The solve report's presentation (powergraph.statics.report, statics.columns): names
+"""The solve report's presentation (powergraph.statics.report, powergraph.format): names
 beside ids, aligned columns whatever the names, one unit per column, no -0, the ratio as
 a reduction or a step-up, repr and HTML."""
 from __future__ import annotations
@@ -10,7 +10,7 @@ import pytest
 import powergraph as pg
 from powergraph.model import model_from_dict
 from powergraph.result import display_width
-from powergraph.statics.columns import column, power_unit, ratio_text
+from powergraph.format import column, power_unit, ratio_text
 from powergraph.testing import assert_conservation
 
 LONG = "a very long name for the sun gear of the first stage, ünïcödé"
