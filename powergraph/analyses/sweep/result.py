@@ -87,7 +87,8 @@ class SweepResult:
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
-                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)), status=shaped(outputs.status),
+                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)),
+                   status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
 
     @property
