@@ -2,9 +2,10 @@
 
 The paper takes the profile error ``d`` as half the IT tolerance of the disc's pitch
 diameter ``m·z1`` (tests/data/published_values.yaml; this reproduces its Table 1, e.g.
-m = 3, z1 = 9, IT5 → 0.0045 mm). The values are the standard's table (µm) for nominal sizes up to 500 mm; they
-follow ``k·i`` with ``i = 0.45·D^(1/3) + 0.001·D`` (µm, ``D`` the geometric mean of the
-step's limits) and ``k = 7, 10, 16, 25, 40`` for IT5…IT9, rounded by the standard's rules.
+m = 3, z1 = 9, IT5 → 0.0045 mm). The values are the standard's table (µm) for nominal
+sizes up to 500 mm; they follow ``k·i`` with ``i = 0.45·D^(1/3) + 0.001·D`` (µm, ``D``
+the geometric mean of the step's limits) and ``k = 7, 10, 16, 25, 40`` for IT5…IT9,
+rounded by the standard's rules.
 """
 from __future__ import annotations
 

@@ -44,7 +44,7 @@ def test_json_rows_carry_the_compare_fields(capsys) -> None:
         for key in ("ratio", "efficiency", "backdrive_efficiency", "backdrive_self_locking",
                     "circulating_power", "max_virtual_power_ratio", "meshes", "teeth"):
             assert key in row
-        assert abs(row["ratio"] / 5 - 1) <= 0.01
+        assert abs(row["ratio"] / 5 - 1) <= 0.01 * (1 + 1e-12)   # 4.95 is on the edge
     simple = [r for r in data["rows"] if r["layout"] == "simple"
               and re.search(r"sun L\d in, carrier L\d out, ring L\d fixed", r["name"])]
     assert simple

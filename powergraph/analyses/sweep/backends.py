@@ -292,9 +292,10 @@ def _batched_solve(matrix: np.ndarray, rhs: np.ndarray,
 
     Square systems first set the unknowns their structure makes exactly 0
     (:func:`~powergraph.linalg_batch.structural_zeros`: an idle gear's force), then are
-    solved scaled, each by its own unknowns, and judged regular on the scaled system (:func:`powergraph.linalg_batch.solve_square_batch`, the single solve's
-    procedure and limits); the others (load sharing not fixed by statics) take the
-    minimum-norm solution, with a residual check.
+    solved scaled, each by its own unknowns, and judged regular on the scaled system
+    (:func:`powergraph.linalg_batch.solve_square_batch`, the single solve's procedure and
+    limits); the others (load sharing not fixed by statics) take the minimum-norm
+    solution, with a residual check.
     """
     with np.errstate(all="ignore"):
         finite = np.all(np.isfinite(matrix), axis=(1, 2)) & np.all(np.isfinite(rhs), axis=1)
