@@ -258,6 +258,16 @@ class PowerFlowResult:
 
         return html_summary(self)
 
+    def to_dataframe(self, what: str = "meshes", frame: str | None = None):
+        """A pandas DataFrame of the ``meshes``, ``ports``, ``flows`` (seen from ``frame``)
+        or ``speeds``, names beside ids, SI units in the column names (pandas optional).
+
+        Delegates to :func:`powergraph.statics.tables.to_dataframe`.
+        """
+        from powergraph.statics.tables import to_dataframe
+
+        return to_dataframe(self, what, frame)
+
     def text_report(self) -> str:
         """The readable report ``powergraph solve`` prints."""
         from powergraph.statics.report import text_report

@@ -64,3 +64,15 @@ def test_bad_table_and_missing_pandas_are_usage_errors(rv, monkeypatch) -> None:
     monkeypatch.setitem(sys.modules, "pandas", None)
     with pytest.raises(UsageError, match="pip install pandas"):
         to_dataframe(rv, "ports")
+
+
+def test_the_result_gives_its_tables_as_dataframes() -> None:
+    pytest.importorskip("pandas")
+    result = pg.solve(pg.load_model(RV40E))
+    assert_conservation(result)
+    ports = result.to_dataframe("ports")
+    assert len(ports) == len(result.model.ports)
+    # power into the train at the ports sums to the losses (power balance)
+    power = next(c for c in ports.columns if c.startswith("power"))
+    assert ports[power].sum() == pytest.approx(result.total_loss, rel=1e-9)
+    assert len(result.to_dataframe("meshes")) == len(result.meshes)
