@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from powergraph.cli.cmd_modes import add_mode_option, gear_model
 from powergraph.cli.common import (check_figure_path, load, number_option, print_json,
                                    say_wrote, whole_option, write_atomically)
 from powergraph.errors import UsageError
@@ -52,6 +53,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="rated output torque, N·m (drawn as a line)")
     parser.add_argument("-o", "--output", metavar="FILE", help="write the map (PNG/SVG/PDF)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
+    add_mode_option(parser, "map")
     parser.set_defaults(handler=run)
 
 
@@ -63,7 +65,8 @@ def run(args: argparse.Namespace) -> int:
     speed = span_option(args.speed, "--speed", SPEED_LIMIT)
     rated = (None if args.rated is None
              else number_option(args.rated, "--rated", 0, TORQUE_LIMIT, above=True))
-    result = efficiency_map(load(args.model), torque, speed, rated)
+    result = efficiency_map(gear_model(load(args.model), args.mode), torque, speed,
+                            rated)
     print_json(result.to_dict()) if args.json else print(result.text_report())
     if target is not None:
         ax = result.plot()

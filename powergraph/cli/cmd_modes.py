@@ -66,6 +66,24 @@ def solve_one_mode(model, mode: str | None, method: str = "virtual-power"):
     return result
 
 
+def add_mode_option(parser, what: str) -> None:
+    """The ``--mode NAME`` option of a command that evaluates one gear of a model."""
+    parser.add_argument("--mode", metavar="NAME",
+                        help=f"{what} the model in this mode of its modes table "
+                             "(freewheels decided at the model's own load; docs/modes.md)")
+
+
+def gear_model(model, mode: str | None):
+    """The model of one gear: ``model`` itself when it has neither modes nor freewheels,
+    else the plain train of ``mode`` (engaged elements rigid, freewheels decided at the
+    model's own load by :func:`solve_one_mode`). For the sweep, the map and the tolerance
+    analysis, which evaluate a plain train at many values."""
+    if mode is None and not model.modes and not any(
+            e.kind == "freewheel" for e in model.shift_elements):
+        return model
+    return solve_one_mode(model, mode).result.model
+
+
 def compare_row_of(text: str, mesh_efficiency, compare_row):
     """``compare``'s row of ``MODEL`` or ``MODEL:MODE``: a mode is compared as its gear
     (freewheels decided), back-driven as coasting with its freewheels decided again."""

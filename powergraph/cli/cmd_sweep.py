@@ -12,6 +12,7 @@ import argparse
 import io
 import sys
 
+from powergraph.cli.cmd_modes import add_mode_option, gear_model
 from powergraph.cli.common import (add_cluster_arguments, check_figure_path, check_output_file,
                                    cluster_options, load, new_figure, save_figure,
                                    say_wrote, write_atomically)
@@ -42,6 +43,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="set every mesh's basic efficiency first")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     add_cluster_arguments(parser)
+    add_mode_option(parser, "sweep")
     parser.set_defaults(handler=run)
 
 
@@ -52,7 +54,7 @@ def run(args: argparse.Namespace) -> int:
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
     if args.output:
         check_output_file(args.output, "-o")
-    model = load(args.model, args.mesh_efficiency)
+    model = gear_model(load(args.model, args.mesh_efficiency), args.mode)
     grid = cartesian(parse_sets(model, args.sets))
     cluster = cluster_options(args)
     if cluster["workers"] is None and cluster["scheduler"] is None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 
+from powergraph.cli.cmd_modes import add_mode_option, gear_model
 from powergraph.cli.common import (check_figure_path, load, print_json, say_wrote,
                                    whole_option, write_atomically)
 from powergraph.errors import UsageError
@@ -50,6 +51,7 @@ def register(subparsers) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("-o", "--output", metavar="FILE.png",
                         help="write the histograms and the tornado chart (.png/.svg/.pdf)")
+    add_mode_option(parser, "analyse")
     parser.set_defaults(handler=run)
 
 
@@ -62,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
     seed = None if args.seed is None else whole_option(args.seed, "--seed", 0, MAX_SEED)
     sobol_samples = _sobol(args.sobol_samples)
     specs = [parse_spec(text) for text in args.spec]
-    model = load(args.model)
+    model = gear_model(load(args.model), args.mode)
     progress = False if args.json else None   # None: a bar on a terminal, long runs
     result = tolerance_analysis(model, samples=samples, seed=seed, specs=specs,
                                 sobol_samples=sobol_samples, progress=progress)

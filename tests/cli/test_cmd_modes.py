@@ -83,3 +83,17 @@ def test_compare_takes_model_colon_mode(capsys) -> None:
     simpson = json.loads(capsys.readouterr().out)[0]
     assert simpson["backdrive_efficiency"] is None
     assert "no consistent freewheel state" in simpson["backdrive_note"]
+
+
+@pytest.mark.slow  # three commands, each solving a mode first
+def test_sweep_map_and_tolerance_take_a_mode(capsys) -> None:
+    """``--mode`` evaluates one gear: the sweep's ratio is the gear's published ratio, and
+    a model with modes asked without one is refused naming the modes (exit 2)."""
+    model = str(MODELS / "zf8hp_8speed.yaml")
+    assert main(["sweep", model, "--mode", "3", "--set", "links.0.efficiency=0.98"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert float(out[1].split(",")[1]) == pytest.approx(2.104, abs=1e-3)  # 8HP70, 3rd gear
+    assert main(["map", model, "--mode", "1", "--torque", "100", "--speed", "1000"]) == 0
+    assert "[1]" in capsys.readouterr().out
+    assert main(["sweep", model, "--set", "links.0.efficiency=0.98"]) == 2
+    assert "--mode" in capsys.readouterr().err
