@@ -13,7 +13,8 @@ bad output path of a writing command, and a sample runs through real subprocesse
 Reports: the statuses, the tracebacks (promise: none), other exit statuses than 0 and 2
 (none), the commands over 5 s (none), and for the mutations that do not change the train
 (``same``: ids renamed, merges of equal values, equivalent units, a comment) the answers
-that differ from the plain model's (efficiency, circulating power, `draw` succeeding),
+that differ from the plain model's (efficiency, circulating power, the speeds and torques,
+`draw` succeeding),
 per class; then the time taken.
 
 Usage: python benchmarks/hostile_inputs.py [--count 3000] [--jobs N] [--subprocess 30]
@@ -102,18 +103,22 @@ def run(argv: list[str]) -> tuple[object, str, float, str]:
 
 
 def answer(status: object, stdout: str) -> tuple | None:
-    """(efficiency, circulating power) of a successful ``solve --json``."""
+    """(efficiency, circulating power, speeds, torques) of a successful ``solve --json``;
+    speeds and torques sorted, so that renamed ids compare equal."""
     if status != 0:
         return None
     data = json.loads(stdout)
-    return data.get("efficiency"), data.get("circulating_power")
+    return (data.get("efficiency"), data.get("circulating_power"),
+            *sorted(data.get("speeds", {}).values()), *sorted(data.get("torques", {}).values()))
 
 
 def same(a: tuple | None, b: tuple | None) -> bool:
     if a is None or b is None:
         return a is b
-    return all((x is None and y is None) or (x is not None and y is not None and
-               abs(x - y) <= 1e-9 * max(1.0, abs(x), abs(y))) for x, y in zip(a, b))
+    return len(a) == len(b) and all(
+        (x is None and y is None) or (x is not None and y is not None and
+                                      abs(x - y) <= 1e-9 * max(1.0, abs(x), abs(y)))
+        for x, y in zip(a, b))
 
 
 def check_file(task: tuple) -> list[tuple]:
@@ -219,7 +224,8 @@ def report(records: list[tuple], plain: dict, total_files: int) -> None:
     print(f"commands over {SLOW:g} s: {len(slow)}")
     for seconds, what in sorted(slow, reverse=True)[:10]:
         print(f"  {seconds:6.1f} s {what}")
-    print("answers of mutations that keep the train (efficiency, circulating power, draw): "
+    print("answers of mutations that keep the train (efficiency, circulating power, speeds, "
+          "torques, draw): "
           f"{sum(per_class.values())} checked, {sum(map(len, differ.values()))} differ")
     for kind in sorted(per_class):
         example = f"; e.g. {differ[kind][0][:200]}" if differ[kind] else ""
