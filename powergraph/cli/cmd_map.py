@@ -31,9 +31,11 @@ def span_option(text: str, option: str, limit: float) -> np.ndarray:
     parts = text.split(":")
     if len(parts) not in (1, 3):
         raise UsageError(f"{option} {text}: expected START:STOP:N or one value")
-    ends = [number_option(part, option, -limit, limit) for part in parts[:2]]
-    count = (whole_option(parts[2], f"{option} (N of START:STOP:N)", 1, MAX_POINTS)
-             if len(parts) == 3 else 1)
+    try:
+        ends = [number_option(part, option, -limit, limit) for part in parts[:2]]
+        count = whole_option(parts[2], option, 1, MAX_POINTS) if len(parts) == 3 else 1
+    except UsageError as exc:
+        raise UsageError(f"{exc.message} (in {option} {text}: START:STOP:N)") from None
     return np.linspace(ends[0], ends[-1], count)
 
 

@@ -16,7 +16,7 @@ from powergraph.cli.common import (add_cluster_arguments, check_output_folder, c
                                    efficiency_option, number_option, print_json,
                                    whole_option)
 from powergraph.errors import UsageError
-from powergraph.model.schema_parts import MAX_RATIO
+from powergraph.model.schema_parts import MAX_RATIO, MIN_RATIO
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -80,8 +80,9 @@ def parse_teeth(text: str) -> tuple[int, int]:
 def run(args: argparse.Namespace) -> int:
     target = check_output_folder(args.output, "-o") if args.output else None
     ratio = number_option(args.ratio, "--ratio", -MAX_RATIO, MAX_RATIO)
-    if ratio == 0:
-        raise UsageError("--ratio 0: a ratio cannot be zero")
+    if abs(ratio) < MIN_RATIO:   # as in a model file
+        raise UsageError(f"--ratio {args.ratio}: a ratio cannot be zero or below "
+                         f"{MIN_RATIO:g} either way")
     efficiency = efficiency_option(args.mesh_efficiency)
     options = dict(
         tolerance=parse_tolerance(args.tolerance),
