@@ -150,3 +150,23 @@ def test_a_machine_on_an_undeclared_bus_is_refused():
     data["ports"][1]["bus"] = "ac"
     with pytest.raises(ModelError, match="unknown bus"):
         model_from_dict(data)
+
+
+def test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation():
+    # models/ths2_power_split.yaml: the same planetary (30/78), the ring to the wheels
+    # through 31:31 then 19:78, so w_r = w_wheels * 78/19 (two external pairs: same
+    # sense). With every mesh ideal the hand derivation above holds at that ring speed.
+    from pathlib import Path
+
+    import powergraph as pg
+
+    path = Path(__file__).resolve().parents[2] / "models" / "ths2_power_split.yaml"
+    model = pg.load_model(path).with_mesh_efficiency(1.0)
+    result = solve(model)
+    assert_conservation(result)
+    hand = _by_hand(400 * 78 / 19)
+    mg = _machines(result)
+    assert mg["MG1"].power == pytest.approx(hand["p_mg1"], rel=1e-9)
+    assert mg["MG2"].power == pytest.approx(hand["p_mg2"], rel=1e-9)
+    wheels = next(p for p in result.ports if p.name == "wheels")
+    assert -wheels.power == pytest.approx(hand["wheels"], rel=1e-9)
