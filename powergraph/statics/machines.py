@@ -102,8 +102,8 @@ def solve_machines(model: Model, speeds: Mapping[str, float] | None,
                                ports=_machine_torques(model, kin))
     balanced = [bus for bus in model.buses.values() if bus.battery is not None]
     _check_count(model, kin, balanced)
-    unknowns = _choose_unknowns(base, balanced, kin, plain_solve)
-    result = _newton(base, balanced, unknowns, kin, plain_solve)
+    unknowns, first = _choose_unknowns(base, balanced, kin, plain_solve)
+    result = _newton(base, balanced, unknowns, kin, plain_solve, first)
     return _with_machines(model, result)
 
 
@@ -141,9 +141,10 @@ def _check_count(model: Model, kin, balanced: list) -> None:
                        f"{given + len(balanced) - needed} (or set a battery to free)", "ports")
 
 
-def _choose_unknowns(base: Model, balanced: list, kin, plain_solve) -> list[int]:
+def _choose_unknowns(base: Model, balanced: list, kin, plain_solve) -> tuple[list[int], Any]:
     """For each balanced bus, the index of a machine port whose torque is the unknown:
-    one without a given load, turning, with which the train is determined."""
+    one without a given load, turning, with which the train is determined; and the solve
+    with those torques 0."""
     options = []
     for bus in balanced:
         free = [p.index for p in base.ports if p.bus == bus.name and not _given(p)
@@ -157,8 +158,7 @@ def _choose_unknowns(base: Model, balanced: list, kin, plain_solve) -> list[int]
     last: StaticsError | None = None
     for choice in itertools.product(*options):
         try:
-            plain_solve(_with_torques(base, choice, np.zeros(len(choice))))
-            return list(choice)
+            return list(choice), plain_solve(_with_torques(base, choice, np.zeros(len(choice))))
         except StaticsError as error:
             last = error
     raise StaticsError(f"no choice of the machines' torques on the balanced buses "
@@ -187,32 +187,44 @@ def _drawn(result) -> dict[str, float]:
     return out
 
 
-def _newton(base: Model, balanced: list, unknowns: list[int], kin, plain_solve):
-    """Newton's method on the bus residuals, the slopes by differences on the current
-    piece (exact for a piecewise-linear residual away from its kinks)."""
+def _newton(base: Model, balanced: list, unknowns: list[int], kin, plain_solve, result):
+    """Newton's method on the bus residuals from ``result`` (the torques 0): the slopes
+    by differences once, then Broyden's updates (on a piecewise-linear residual, a step
+    within one piece lands on the root; across a kink the secant corrects it)."""
     x = np.zeros(len(unknowns))
     speeds = np.array([kin.speed(base.ports[i].component) for i in unknowns])
-    result = plain_solve(_with_torques(base, unknowns, x))
     scale = max([abs(p.power) for p in result.ports] + [abs(b.battery) for b in balanced]
                 + [1.0])
+    r = _residuals(result, balanced)
+    jac = None
     for _ in range(MAX_STEPS):
-        r = _residuals(result, balanced)
         if np.max(np.abs(r), initial=0.0) <= RTOL * scale or result.lock is not None:
             return result
-        steps = np.maximum(1e-7 * np.abs(x), 1e-7 * scale / np.abs(speeds))
-        jac = np.empty((len(r), len(x)))
-        for j, h in enumerate(steps):
-            shifted = x.copy()
-            shifted[j] += h
-            jac[:, j] = (_residuals(plain_solve(_with_torques(base, unknowns, shifted)),
-                                    balanced) - r) / h
+        if jac is None:
+            jac = _slopes(base, balanced, unknowns, plain_solve, x, r,
+                          np.maximum(1e-7 * np.abs(x), 1e-7 * scale / np.abs(speeds)))
         try:
-            x = x - np.linalg.solve(jac, r)
+            dx = -np.linalg.solve(jac, r)
         except np.linalg.LinAlgError:
             break
+        x = x + dx
         result = plain_solve(_with_torques(base, unknowns, x))
+        new = _residuals(result, balanced)
+        jac = jac + np.outer(new - r - jac @ dx, dx) / float(dx @ dx)
+        r = new
     raise StaticsError("the bus balance did not settle (no machine torques meet the "
                        "battery powers)", "buses")
+
+
+def _slopes(base, balanced, unknowns, plain_solve, x, r, steps) -> np.ndarray:
+    """The residuals' slopes by forward differences."""
+    jac = np.empty((len(r), len(x)))
+    for j, h in enumerate(steps):
+        shifted = x.copy()
+        shifted[j] += h
+        jac[:, j] = (_residuals(plain_solve(_with_torques(base, unknowns, shifted)),
+                                balanced) - r) / h
+    return jac
 
 
 def _with_machines(model: Model, result):
