@@ -43,12 +43,17 @@ class CycleRow:
     efficiency: float | None
     verdict: str
     losses: Mapping[str, float] = field(repr=False, default_factory=dict)
+    #: With machines: the electrical path's share and whether power circulates through
+    #: a bus (docs/hybrid.md); None otherwise.
+    electrical_share: float | None = None
+    negative_split: bool | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {"row": self.index, "duration": self.duration, "mode": self.mode,
                 "power_in": self.power_in, "power_out": self.power_out, "loss": self.loss,
                 "efficiency": self.efficiency, "verdict": self.verdict,
-                "losses": dict(self.losses)}
+                "losses": dict(self.losses), "electrical_share": self.electrical_share,
+                "negative_split": self.negative_split}
 
 
 @dataclass(frozen=True)
@@ -90,6 +95,12 @@ class CycleResult:
         return out
 
     @property
+    def negative_split_time(self) -> float:
+        """Time (s) the machines spend in a negative split (power circulating through a
+        bus)."""
+        return float(sum(r.duration for r in self.rows if r.negative_split))
+
+    @property
     def locked_rows(self) -> list[int]:
         return [r.index for r in self.rows if r.verdict in ("locked", "self-locking")]
 
@@ -99,7 +110,8 @@ class CycleResult:
                 "energy_lost": self.energy_lost,
                 "total_energy_lost": float(sum(self.energy_lost.values())),
                 "efficiency": self.efficiency, "time_per_mode": self.time_per_mode,
-                "locked_rows": self.locked_rows}
+                "locked_rows": self.locked_rows,
+                "negative_split_time": self.negative_split_time}
 
     def text_report(self) -> str:
         from powergraph.analyses.cycle_report import text_report
@@ -179,7 +191,8 @@ def _cleared(model: Model, points: Points) -> Model:
 
 def _single_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
     from powergraph.statics import solve
-    from powergraph.statics.machine_report import boundary_powers
+    from powergraph.statics.machine_report import (boundary_powers, electrical_share,
+                                                   negative_split)
 
     base = _cleared(model, points)
     rows = []
@@ -203,7 +216,9 @@ def _single_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
             power_in=sum(p for p in crossing if p > 0) + 0.0,
             power_out=-sum(p for p in crossing if p < 0) + 0.0,
             loss=result.total_loss, efficiency=result.efficiency, verdict=verdict,
-            losses=solve_losses(result)))
+            losses=solve_losses(result),
+            electrical_share=electrical_share(result) if result.machines else None,
+            negative_split=negative_split(result) if result.machines else None))
     return tuple(rows)
 
 

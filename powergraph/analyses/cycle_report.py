@@ -12,7 +12,8 @@ if TYPE_CHECKING:   # pragma: no cover
 
 #: CSV columns of the per-row results, with their units.
 COLUMNS = (("row", None), ("duration", "s"), ("mode", None), ("power_in", "W"),
-           ("power_out", "W"), ("loss", "W"), ("efficiency", "-"), ("verdict", None))
+           ("power_out", "W"), ("loss", "W"), ("efficiency", "-"), ("verdict", None),
+           ("electrical_share", "-"), ("negative_split", None))
 
 
 def text_report(result: "CycleResult") -> str:
@@ -27,6 +28,9 @@ def text_report(result: "CycleResult") -> str:
              f"energy lost         {kj(sum(result.energy_lost.values()))} kJ",
              "cycle efficiency    " + (f"{eff:.2%}" if eff is not None else
                                        "undefined (no energy enters)")]
+    if any(r.negative_split is not None for r in result.rows):
+        lines.append(f"negative split      {format_number(result.negative_split_time, 6)} s "
+                     "(power circulating through a bus)")
     if result.locked_rows:
         lines.append(f"rows that lock      {', '.join(str(i + 2) for i in result.locked_rows)}"
                      " (file lines)")
@@ -54,7 +58,9 @@ def to_csv(result: "CycleResult", path: Any = None) -> str | None:
     for r in result.rows:
         writer.writerow([r.index, repr(r.duration), r.mode or "", repr(r.power_in),
                          repr(r.power_out), repr(r.loss),
-                         "" if r.efficiency is None else repr(r.efficiency), r.verdict])
+                         "" if r.efficiency is None else repr(r.efficiency), r.verdict,
+                         "" if r.electrical_share is None else repr(r.electrical_share),
+                         "" if r.negative_split is None else str(r.negative_split).lower()])
     if path is None:
         return out.getvalue()
     with open(path, "w", encoding="utf-8", newline="") as f:

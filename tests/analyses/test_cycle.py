@@ -77,6 +77,11 @@ def test_a_hybrid_cycle_solves_row_by_row_and_sums_the_single_solves():
             ({0: {"speed": 2500 * RPM, "power": 40e3}, 3: {"speed": 200 * RPM}}, 5.0)]
     _check(result, *_expected(model, rows))
     assert "machine MG1" in result.energy_lost
+    # Row 2: the ring turns at 1400 * 78/19 = 5747 rpm, the sun at
+    # 3.6 * 1500 - 2.6 * 5747 < 0 against its torque -T_c/3.6 < 0: MG1 motors, a negative
+    # split, for that row's 5 s; rows 1 and 3 have the sun forwards (positive split).
+    assert [r.negative_split for r in result.rows] == [False, True, False]
+    assert result.negative_split_time == 5.0
 
 
 def test_time_per_mode_of_a_gearbox_cycle():

@@ -170,3 +170,19 @@ def test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation():
     assert mg["MG2"].power == pytest.approx(hand["p_mg2"], rel=1e-9)
     wheels = next(p for p in result.ports if p.name == "wheels")
     assert -wheels.power == pytest.approx(hand["wheels"], rel=1e-9)
+
+
+def test_check_counts_the_bus_balance_and_explains_a_missing_load(tmp_path, capsys):
+    import yaml
+
+    from powergraph.cli.main import main
+
+    good, free = tmp_path / "good.yaml", tmp_path / "free.yaml"
+    good.write_text(yaml.safe_dump(_device(1500)))
+    free.write_text(yaml.safe_dump(_device(1500, battery="free")))
+    assert main(["check", str(good)]) == 0
+    assert "loads of 1 of 2 port(s) given and 1 bus balance(s)" in capsys.readouterr().out
+    assert main(["check", str(free)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("powergraph: error: ports: the loads are not determined")
+    assert "0 bus balance(s)" in err and len(err.splitlines()) == 1
