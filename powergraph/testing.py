@@ -27,7 +27,7 @@ Examples
 """
 from __future__ import annotations
 
-from powergraph.statics.flow import GENERATOR, GROUND, LOSS, MOTOR
+from powergraph.statics.flow import BATTERY, GENERATOR, GROUND, LOSS, MOTOR
 from powergraph.statics.result import PowerFlowResult
 
 RTOL = 1e-9
@@ -46,14 +46,33 @@ def _scale(result: PowerFlowResult) -> float:
 def assert_power_balance(result: PowerFlowResult, rtol: float = RTOL) -> None:
     """Power in = power out + losses; the total loss is the elements' plus the bearings';
     no element loses a negative power."""
-    _close(result.input_power, result.output_power + result.total_loss, _scale(result),
-           rtol, "power in vs power out + losses")
+    machines = getattr(result, "machines", ())
+    battery = sum(b.battery_power for b in getattr(result, "buses", {}).values())
+    _close(result.input_power + battery, result.output_power + result.total_loss,
+           _scale(result), rtol, "power in (+ batteries) vs power out + losses")
     _close(result.total_loss, sum(e.loss for e in result.elements)
-           + sum(b.loss for b in getattr(result, "bearings", ())), _scale(result), rtol,
-           "total loss vs mesh losses + bearing losses")
+           + sum(b.loss for b in getattr(result, "bearings", ()))
+           + sum(m.loss for m in machines), _scale(result), rtol,
+           "total loss vs mesh losses + bearing losses + machine losses")
+    _assert_machines(result, rtol)
     for element in result.elements:
         if element.loss < -rtol * _scale(result):
             raise AssertionError(f"links[{element.link}] has a negative loss {element.loss}")
+
+
+def _assert_machines(result: PowerFlowResult, rtol: float) -> None:
+    """Each machine draws P/η motoring and P·η generating (loss >= 0); each bus's battery
+    power equals what its machines draw."""
+    scale = _scale(result)
+    drawn: dict[str, float] = {}
+    for m in getattr(result, "machines", ()):
+        expected = m.power / m.efficiency if m.power > 0 else m.power * m.efficiency
+        _close(m.electrical_power, expected, scale, rtol, f"{m.name}: electrical power")
+        if m.loss < -rtol * scale:
+            raise AssertionError(f"{m.name} has a negative loss {m.loss}")
+        drawn[m.bus] = drawn.get(m.bus, 0.0) + m.electrical_power
+    for name, bus in getattr(result, "buses", {}).items():
+        _close(bus.battery_power, drawn.get(name, 0.0), scale, rtol, f"balance of bus {name}")
 
 
 def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
@@ -62,7 +81,7 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
     motor + ground = generator + loss."""
     graph = result.flow_graph(frame)
     scale = _scale(result) + sum(abs(e.carrier_frame_power) for e in result.elements)
-    sources = (MOTOR, GENERATOR, LOSS, GROUND)
+    sources = (MOTOR, GENERATOR, LOSS, GROUND, BATTERY)
     for node in graph.nodes:
         if node.kind in sources:
             continue
@@ -74,8 +93,8 @@ def assert_flow_balance(result: PowerFlowResult, frame: str | None = None,
         _close(inflow, outflow, max(scale, inflow + outflow), rtol,
                f"flow balance at {node!r} (frame {frame})")
     edges = list(graph.edges(data="power"))
-    fed = sum(p for u, _, p in edges if u.kind in (MOTOR, GROUND)) \
-        - sum(p for _, v, p in edges if v.kind in (MOTOR, GROUND))
+    fed = sum(p for u, _, p in edges if u.kind in (MOTOR, GROUND, BATTERY)) \
+        - sum(p for _, v, p in edges if v.kind in (MOTOR, GROUND, BATTERY))
     taken = sum(p for _, v, p in edges if v.kind in (GENERATOR, LOSS)) \
         - sum(p for u, _, p in edges if u.kind in (GENERATOR, LOSS))
     moved = sum(p for u, v, p in edges if u.kind in sources or v.kind in sources)

@@ -19,7 +19,7 @@ from powergraph.analyses.efficiency_grid import at_point, solve_grid
 from powergraph.analyses.sweep import STATUS, sweep
 from powergraph.analyses.sweep.backends import applies
 from powergraph.analyses.sweep.compile import compile_sweep
-from powergraph.errors import MethodNotApplicableError, ModelError
+from powergraph.errors import MethodNotApplicableError, ModelError, UsageError
 from powergraph.kinematics import elements_of
 from powergraph.model import load_model, loads_model
 from powergraph.statics.friction import loss_block_places
@@ -79,6 +79,10 @@ def test_every_model_file(path: Path) -> None:
     model = load_model(path)
     single = pg.solve(model)
     assert_conservation(single)
+    if model.buses:                         # machines on buses: the sweep refuses them
+        with pytest.raises(UsageError, match="machines"):
+            one_point(model, "auto")
+        return
     if loss_block_places(model):            # load-dependent losses: the grid evaluates them
         with pytest.raises(ModelError):
             one_point(model, "auto")

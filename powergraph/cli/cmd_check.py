@@ -43,6 +43,9 @@ def run(args: argparse.Namespace) -> int:
     given = sum(p.power is not None or p.torque is not None for p in model.ports)
     loads = (f"loads of {given} of {needed} port(s) given" if given
              else "no load given (solved per watt of input)")
+    balances = sum(bus.battery is not None for bus in model.buses.values())
+    if balances:
+        loads += f" and {balances} bus balance(s)"
     meshes = len(model.meshes)
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.bodies)} bodies, {meshes} mesh{'es' if meshes != 1 else ''}, "

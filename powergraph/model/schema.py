@@ -167,8 +167,9 @@ _PORT = {
     "properties": {
         "component": _ref("componentId", title="component",
                           description="The component the port is on (not the frame)."),
-        "role": {"enum": ["input", "output"], "title": "role",
-                 "description": "input: power fed in; output: power taken out."},
+        "role": {"enum": ["input", "output", "machine"], "title": "role",
+                 "description": "input: power fed in; output: power taken out; machine: an "
+                                "electric machine on an electrical bus (docs/hybrid.md)."},
         "speed": _quantity("speed", "speed", "Speed of the component.",
                            minimum=-MAX_SPEED, maximum=MAX_SPEED),
         "power": _quantity("power", "power", "Power fed in (input) or taken out (output).",
@@ -176,6 +177,12 @@ _PORT = {
         "torque": _quantity("torque", "torque", "External torque on the component.",
                             minimum=-MAX_TORQUE, maximum=MAX_TORQUE),
         "name": _text("name", "A label for reports."),
+        "efficiency": {**_EFFICIENCY, "default": 1, "title": "efficiency",
+                       "description": "A machine's efficiency in (0, 1]: electrical power "
+                                      "P/efficiency when motoring, P*efficiency when "
+                                      "generating."},
+        "bus": {"type": ["string", "number"], "title": "bus",
+                "description": "A machine's electrical bus (a key of buses)."},
     },
     "additionalProperties": False,
     "required": ["component", "role"],
@@ -209,6 +216,18 @@ MODEL_SCHEMA: dict[str, Any] = {
                   "description": "At least one input and one output."},
         "tolerances": _TOLERANCES,
         "modes": MODES,
+        "buses": {"type": "object", "title": "buses",
+                  "description": "{name: bus}: electrical buses joining machine ports "
+                                 "(docs/hybrid.md).",
+                  "additionalProperties": {
+                      "type": ["object", "null"], "title": "bus",
+                      "properties": {"battery": {
+                          "title": "battery",
+                          "description": "The battery's power into the bus (W or a string "
+                                         "with units), or free (omitted: free).",
+                          "anyOf": [{"type": "number"}, {"type": "string"},
+                                    {"type": "null"}]}},
+                      "additionalProperties": False}},
     },
     "additionalProperties": False,
     "required": ["name", "components", "links", "ports"],

@@ -106,10 +106,30 @@ class Port:
     power: float | None = None
     torque: float | None = None
     name: str | None = None
+    #: A machine's efficiency and bus (``role: machine``, docs/hybrid.md); else None.
+    efficiency: float | None = None
+    bus: str | None = None
 
     @property
     def path(self) -> str:
         return f"ports[{self.index}]"
+
+    @property
+    def is_machine(self) -> bool:
+        return self.role == "machine"
+
+
+@dataclass(frozen=True)
+class Bus:
+    """An electrical bus joining machine ports; ``battery`` is the battery's power into
+    the bus (W), None when free (docs/hybrid.md)."""
+
+    name: str
+    battery: float | None = None
+
+    @property
+    def path(self) -> str:
+        return f"buses.{self.name}"
 
 
 @dataclass(frozen=True)
@@ -144,6 +164,8 @@ class Model:
     modes: Mapping[str, tuple[str, ...]] = field(default_factory=lambda: MappingProxyType({}))
     #: The mode this model was resolved in (powergraph.model.modes.resolve), else None.
     mode: str | None = None
+    #: ``{name: Bus}`` electrical buses of the machine ports; empty without machines.
+    buses: Mapping[str, "Bus"] = field(default_factory=lambda: MappingProxyType({}))
 
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
@@ -173,6 +195,11 @@ class Model:
     @cached_property
     def outputs(self) -> tuple[Port, ...]:
         return tuple(p for p in self.ports if p.role == "output")
+
+    @cached_property
+    def machines(self) -> tuple[Port, ...]:
+        """The ports with ``role: machine`` (electric machines on buses)."""
+        return tuple(p for p in self.ports if p.role == "machine")
 
     @cached_property
     def _bodies_by_id(self) -> Mapping[str, Body]:

@@ -14,6 +14,7 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import Caveat, ModelError
+from powergraph.model.buses import buses_of, machine_fields
 from powergraph.model.conform import check_document, conform
 from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
@@ -74,7 +75,8 @@ def _model(data: Any, source: str | None) -> Model:
                   components=MappingProxyType(components), links=links, ports=ports,
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
                   shift_elements=shift_elements, modes=modes,
-                  mode=next(iter(modes), None), warnings=tuple(caveats))
+                  mode=next(iter(modes), None), warnings=tuple(caveats),
+                  buses=buses_of(data.get("buses"), ports))
     if modes:
         from powergraph.model.modes import resolve
 
@@ -252,7 +254,7 @@ def _ports(raw: list, components: Mapping[str, Component],
             if caveat is not None:
                 caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
-                          name=_text(item.get("name")), **values))
+                          name=_text(item.get("name")), **values, **machine_fields(item, path)))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):
         raise ModelError("a train needs at least one input and one output port", "ports")
     return tuple(ports)

@@ -34,8 +34,10 @@ if TYPE_CHECKING:
 
 MOTOR, GENERATOR, LOSS, GROUND = "motor", "generator", "loss", "ground"
 BODY, FRAME = "body", "frame"
+MACHINE, BUS, BATTERY = "machine", "bus", "battery"
 #: Every node kind of the flow graph.
-KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "drag", MOTOR, GENERATOR, LOSS, GROUND)
+KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "drag", MOTOR, GENERATOR, LOSS, GROUND,
+         MACHINE, BUS, BATTERY)
 
 
 @total_ordering
@@ -146,6 +148,8 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
     loss = Node(LOSS, LOSS)
     edges: list[Flow] = []
     for port in model.ports:
+        if port.role == MACHINE:
+            continue
         body = model.body_of[port.component]
         power = result.external_torques.get(body, 0.0) * (kin.body_speeds[body] - w_f)
         node, at = port_node(result, port.component, port.role), body_node(result, body)
@@ -169,6 +173,26 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
             edges.append(_oriented(body_node(result, body), node,
                                    -torque * (kin.body_speeds[body] - w_f)))
         edges.append(_arrow(node, loss, bearing.loss))
+    return edges + machine_edges(result, w_f)
+
+
+def machine_edges(result: "PowerFlowResult", w_f: float = 0.0) -> list[Flow]:
+    """The arrows of the machines and buses (docs/hybrid.md): machine ↔ its body
+    (mechanical), bus ↔ machine and battery ↔ bus (electrical), machine → loss; seen
+    from a moving body, the stator's reaction on the ground too."""
+    model, edges, loss = result.model, [], Node(LOSS, LOSS)
+    for machine in result.machines:
+        node, bus = Node(MACHINE, machine.name), Node(BUS, machine.bus)
+        body = model.body_of[machine.component]
+        edges.append(_oriented(node, body_node(result, body),
+                               machine.torque * (machine.speed - w_f)))
+        if w_f != 0.0:
+            edges.append(_oriented(node, Node(GROUND, GROUND), machine.torque * w_f))
+        edges.append(_oriented(bus, node, machine.electrical_power))
+        edges.append(_arrow(node, loss, machine.loss))
+    for name, flow in result.buses.items():
+        edges.append(_oriented(Node(BATTERY, f"battery {name}"), Node(BUS, name),
+                               flow.battery_power))
     return edges
 
 

@@ -6,6 +6,8 @@ import textwrap
 from typing import Any
 
 from powergraph.format import column, power_unit, ratio_text, table
+from powergraph.statics.machine_report import (boundary_powers, machine_dict, machine_lines,
+                                             machine_losses)
 from powergraph.statics.result import PowerFlowResult
 from powergraph.units_si import RPM_PER_RAD_S
 
@@ -52,6 +54,7 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,
         **_friction_dict(result),
+        **machine_dict(result),
         "lock": result.lock.to_dict() if result.lock is not None else None,
         "directions": result.search.to_dict() if result.search is not None else None,
     }
@@ -95,7 +98,7 @@ def loss_sources(result: PowerFlowResult) -> list[tuple[str, float]]:
         prefix = f"links[{b.link}] " if b.link is not None else ""
         out.append((f"{prefix}{b.node} ({_names(model, b.between, None)})"
                     + (" drag" if b.kind == "drag" and "drag" not in b.node else ""), b.loss))
-    return out
+    return out + machine_losses(result)
 
 
 def _names(model, ids, name: str | None) -> str:
@@ -201,6 +204,7 @@ def text_report(result: PowerFlowResult) -> str:
     lines += ["", "meshes (powers in each mesh's carrier frame)"] + _mesh_table(result)
     lines += _friction_lines(result)
     lines += _bearing_lines(result)
+    lines += machine_lines(result)
     lines += ["", "where the power goes"] + _losses_table(result)
     if result.load_sharing_assumed:
         lines += ["", "note: load sharing between parallel paths is statically indeterminate; "
@@ -209,8 +213,9 @@ def text_report(result: PowerFlowResult) -> str:
 
 
 def _summary_lines(result: PowerFlowResult) -> list[str]:
-    entering = sum(p.power for p in result.ports if p.power > 0)
-    leaving = -sum(p.power for p in result.ports if p.power < 0)
+    crossing = boundary_powers(result)
+    entering = sum(p for p in crossing if p > 0)
+    leaving = -sum(p for p in crossing if p < 0)
     unit, scale = power_unit([entering, leaving, result.total_loss])
     powers = column([entering, leaving, result.total_loss], scale)
     rows = []

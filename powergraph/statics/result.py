@@ -115,6 +115,10 @@ class PowerFlowResult:
     bearings: tuple = ()
     lock: Lock | None = None                 # set when the train cannot move as asked
     search: DirectionSearch | None = None    # set when the fixed-point iteration cycled
+    #: Electric machines (MachineFlow) and buses ({name: BusFlow}) of a model with
+    #: ``buses:`` (powergraph.statics.machines); their losses are in ``total_loss``.
+    machines: tuple = ()
+    buses: Mapping[str, Any] = field(default_factory=dict)
 
     @property
     def name(self) -> str:
@@ -138,6 +142,10 @@ class PowerFlowResult:
         None when no power passes (:attr:`efficiency_note` says why)."""
         if self.lock is not None:
             return 0.0
+        if self.machines:   # the machines are inside: count the batteries instead
+            from powergraph.statics.machine_report import boundary_powers
+
+            return flow_efficiency(boundary_powers(self))
         return flow_efficiency(p.power for p in self.ports)
 
     @property

@@ -71,6 +71,10 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     >>> round(r.efficiency, 12), round(r.ratio, 12), round(r.total_loss, 9)
     (0.98, -2.0, 20.0)
     """
+    if model.buses and extra_torques is None:
+        from powergraph.statics.machines import solve_machines
+
+        return solve_machines(model, speeds, solve)
     if extra_torques is None and needs_friction(model):
         # the passes change efficiencies and bearing torques, never the motion: the speeds
         # are solved once for the operating point

@@ -41,6 +41,8 @@ WRITERS = [
     (["synthesize", "--ratio", "x"], "-o", "folder"),
     (["modes", "{missing}"], "-o", "figure"),
     (["lever", "{missing}"], "-o", "figure"),
+    (["cycle", "{missing}", "--points", "p.csv"], "-o", "file"),
+    (["cycle", "{missing}", "--points", "p.csv"], "--plot", "figure"),
 ]
 NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out"}
 

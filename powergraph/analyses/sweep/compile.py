@@ -138,6 +138,10 @@ class CompiledSweep:
         if backend not in BACKENDS:
             raise UsageError(f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}")
         refuse_loss_blocks(model, "the compiled sweep")
+        if model.buses:
+            raise UsageError("the compiled sweep does not take machines on buses "
+                             "(docs/hybrid.md); solve the points one by one "
+                             "(powergraph cycle does)")
         self.model = model
         self.parameters: tuple[Parameter, ...] = parse_paths(model, paths)
         self.layout: Layout = layout_of(model, self.parameters)

@@ -1,0 +1,82 @@
+"""A duty cycle of 10^5 operating points through ``powergraph.analyses.cycle``: a plain
+train's rows go through the compiled sweep; a loop of single solves over the same rows
+is timed in the same run (on a sample, extrapolated, unless ``--full``), and a hybrid
+(machines on a bus: single solves per row) on a smaller sample.
+
+    python benchmarks/cycle.py [--points 100000] [--sample 2000] [--full]
+"""
+from __future__ import annotations
+
+import argparse
+import io
+import time
+from pathlib import Path
+
+import numpy as np
+
+import powergraph as pg
+from powergraph.analyses.cycle import cycle
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _points(n: int, rng: np.random.Generator) -> str:
+    rpm = rng.uniform(500, 3000, n)
+    kw = rng.uniform(0.1, 2.0, n)
+    lines = ["carrier.speed [rpm],carrier.power [kW],duration [s]"]
+    lines += [f"{a!r},{b!r},1" for a, b in zip(rpm.tolist(), kw.tolist())]
+    return "\n".join(lines) + "\n"
+
+
+def _hybrid_points(n: int, rng: np.random.Generator) -> str:
+    lines = ["engine.speed [rpm],engine.power [kW],wheels.speed [rpm],duration [s]"]
+    for e, p, w in zip(rng.uniform(1000, 4000, n).tolist(), rng.uniform(5, 50, n).tolist(),
+                       rng.uniform(50, 900, n).tolist()):
+        lines.append(f"{e!r},{p!r},{w!r},1")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--points", type=int, default=100_000)
+    parser.add_argument("--sample", type=int, default=2000,
+                        help="single solves timed (extrapolated to --points)")
+    parser.add_argument("--full", action="store_true", help="time every single solve")
+    args = parser.parse_args(argv)
+    rng = np.random.default_rng(1)
+    model = pg.load_model(ROOT / "models" / "planetary_2kh_carrier_to_ring.yaml")
+    text = _points(args.points, rng)
+
+    start = time.perf_counter()
+    result = cycle(model, io.StringIO(text))
+    batched = time.perf_counter() - start
+    assert result.method == "sweep"
+
+    n_single = args.points if args.full else min(args.sample, args.points)
+    head = "\n".join(text.splitlines()[: n_single + 1]) + "\n"
+    from powergraph.analyses.cycle import _single_rows
+    from powergraph.analyses.cycle_points import read_points
+
+    points = read_points(io.StringIO(head), model)
+    start = time.perf_counter()
+    rows = _single_rows(model, points)
+    single = (time.perf_counter() - start) * args.points / n_single
+    worst = max(abs(a.loss - b.loss) / max(b.loss, 1e-300)
+                for a, b in zip(result.rows, rows))
+    print(f"{args.points} points, plain train: cycle (sweep) {batched:.2f} s; loop of "
+          f"single solves {single:.1f} s{'' if args.full else ' (extrapolated from '}"
+          f"{'' if args.full else str(n_single) + ')'}; speed-up {single / batched:.0f}x; "
+          f"largest relative difference of a row's loss {worst:.1e}")
+
+    ths = pg.load_model(ROOT / "models" / "ths2_power_split.yaml")
+    n_h = min(args.sample, args.points)
+    start = time.perf_counter()
+    hybrid = cycle(ths, io.StringIO(_hybrid_points(n_h, rng)))
+    per_row = (time.perf_counter() - start) / n_h
+    print(f"{n_h} points, THS-II hybrid (single solves with the bus balance): "
+          f"{per_row * 1e3:.2f} ms per row, cycle efficiency {hybrid.efficiency:.4f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

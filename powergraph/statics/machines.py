@@ -1,0 +1,250 @@
+"""Electric machines on electrical buses: the bus balance as one more equation of the
+train (docs/hybrid.md).
+
+A machine port applies a torque ``T`` to its body; its mechanical power into the train is
+``P = T·ω`` and it draws ``P_e = P/η`` from its bus when it motors (``P > 0``), ``P·η``
+when it generates. A bus whose battery power ``P_b`` is given balances:
+``Σ P_e = P_b`` over its machines. The train then takes one port load fewer per such bus.
+
+Formulation: one machine torque per balanced bus is the unknown ``τ``; for given ``τ``
+the train is a plain one (every load given), solved by the ordinary solve with all its
+direction logic (meshes, friction, locking). The bus residual ``r(τ) = Σ P_e − P_b`` is
+linear for a fixed pattern of mesh directions and machine states (motoring/generating)
+and continuous across them (both branches of ``P_e`` vanish at ``P = 0``), so Newton's
+method with the slope of the current piece lands on the consistent pattern in a few steps.
+"""
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from powergraph.errors import StaticsError
+from powergraph.kinematics import solve_speeds
+from powergraph.model.spec import Model, Port
+
+#: Newton iterations on the bus balances before giving up.
+MAX_STEPS = 40
+#: A bus balances when its residual is within this fraction of the train's power.
+RTOL = 1e-11
+
+
+def electrical_power(power: float, efficiency: float) -> float:
+    """Electrical power a machine draws from its bus for mechanical power ``power`` into
+    the train: ``P/η`` motoring, ``P·η`` generating.
+
+    >>> electrical_power(900.0, 0.9), electrical_power(-1000.0, 0.9)
+    (1000.0, -900.0)
+    """
+    return power / efficiency if power > 0 else power * efficiency
+
+
+@dataclass(frozen=True)
+class MachineFlow:
+    """One machine at the solved point: speed (rad/s), torque on the train (N·m),
+    mechanical ``power`` into the train and ``electrical_power`` drawn from its bus (W,
+    both negative when it generates); ``loss = electrical_power - power >= 0``."""
+
+    name: str
+    component: str
+    bus: str
+    efficiency: float
+    speed: float
+    torque: float
+    power: float
+    electrical_power: float
+
+    @property
+    def state(self) -> str:
+        """``motoring``, ``generating`` or ``idle``."""
+        return "motoring" if self.power > 0 else ("generating" if self.power < 0 else "idle")
+
+    @property
+    def loss(self) -> float:
+        return self.electrical_power - self.power + 0.0
+
+    def to_dict(self, raw: Callable = str) -> dict[str, Any]:
+        return {"name": self.name, "component": raw(self.component), "bus": self.bus,
+                "speed": self.speed, "torque": self.torque, "power": self.power,
+                "electrical_power": self.electrical_power, "state": self.state,
+                "loss": self.loss}
+
+
+@dataclass(frozen=True)
+class BusFlow:
+    """A bus at the solved point: the battery's power into it (W; given or, for a free
+    battery, what the machines draw)."""
+
+    name: str
+    battery_power: float
+    given: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"battery_power": self.battery_power}
+
+
+def machine_name(port: Port, model: Model) -> str:
+    """The port's name, else ``machine COMPONENT``."""
+    return port.name or f"machine {model.raw_id(port.component)}"
+
+
+def solve_machines(model: Model, speeds: Mapping[str, float] | None,
+                   plain_solve: Callable[[Model], Any]):
+    """Solve a train with machines on buses; ``plain_solve(model)`` solves a train
+    without buses. Returns the plain result with ``machines`` and ``buses`` set and the
+    machines' losses in ``total_loss``."""
+    kin = solve_speeds(model, speeds)
+    base = dataclasses.replace(model, buses=MappingProxyType({}),
+                               ports=_machine_torques(model, kin))
+    balanced = [bus for bus in model.buses.values() if bus.battery is not None]
+    _check_count(model, kin, balanced)
+    unknowns, first = _choose_unknowns(base, balanced, kin, plain_solve)
+    result = _newton(base, balanced, unknowns, kin, plain_solve, first)
+    return _with_machines(model, result)
+
+
+def _machine_torques(model: Model, kin) -> tuple[Port, ...]:
+    """Machine ports with a given power carry it as a torque (power into the train)."""
+    ports = []
+    for port in model.ports:
+        if port.is_machine and port.power is not None:
+            speed = kin.speed(port.component)
+            if abs(speed) < 1e-12:
+                raise StaticsError("a machine's power is given but it does not turn; give "
+                                   "a torque instead", f"{port.path}.power")
+            port = dataclasses.replace(port, power=None, torque=port.power / speed)
+        ports.append(port)
+    return tuple(ports)
+
+
+def _given(port: Port) -> bool:
+    return port.power is not None or port.torque is not None
+
+
+def _check_count(model: Model, kin, balanced: list) -> None:
+    needed = len(model.ports) - kin.dof
+    given = sum(_given(p) for p in model.ports)
+    if given + len(balanced) == needed:
+        return
+    buses = ", ".join(b.path for b in balanced) or "none"
+    counted = (f"this train takes the power or torque of {needed} port(s); "
+               f"{given} given and {len(balanced)} bus balance(s) (battery given: {buses})")
+    if given + len(balanced) < needed:
+        raise StaticsError(f"the loads are not determined: {counted}; give "
+                           f"{needed - given - len(balanced)} more (a port's power or "
+                           f"torque, or a bus's battery power)", "ports")
+    raise StaticsError(f"the given loads contradict each other: {counted}; drop "
+                       f"{given + len(balanced) - needed} (or set a battery to free)", "ports")
+
+
+def _choose_unknowns(base: Model, balanced: list, kin, plain_solve) -> tuple[list[int], Any]:
+    """For each balanced bus, the index of a machine port whose torque is the unknown:
+    one without a given load, turning, with which the train is determined; and the solve
+    with those torques 0."""
+    options = []
+    for bus in balanced:
+        free = [p.index for p in base.ports if p.bus == bus.name and not _given(p)
+                and abs(kin.speed(p.component)) > 1e-12]
+        if not free:
+            raise StaticsError("every machine on this bus has a given load or stands still, "
+                               "so its battery power cannot be met; set battery: free or "
+                               "drop a machine's load", f"{bus.path}.battery")
+        free.sort(key=lambda i: -abs(kin.speed(base.ports[i].component)))
+        options.append(free)
+    last: StaticsError | None = None
+    for choice in itertools.product(*options):
+        try:
+            return list(choice), plain_solve(_with_torques(base, choice, np.zeros(len(choice))))
+        except StaticsError as error:
+            last = error
+    raise StaticsError(f"no choice of the machines' torques on the balanced buses "
+                       f"determines the train ({last.message if last else ''})", "buses")
+
+
+def _with_torques(base: Model, indices, torques) -> Model:
+    ports = list(base.ports)
+    for i, t in zip(indices, torques):
+        ports[i] = dataclasses.replace(ports[i], torque=float(t))
+    return dataclasses.replace(base, ports=tuple(ports))
+
+
+def _residuals(result, balanced: list) -> np.ndarray:
+    drawn = _drawn(result)
+    return np.array([drawn.get(bus.name, 0.0) - bus.battery for bus in balanced])
+
+
+def _drawn(result) -> dict[str, float]:
+    out: dict[str, float] = {}
+    for flow in result.ports:
+        port = result.model.ports[flow.index]
+        if port.is_machine:
+            out[port.bus] = out.get(port.bus, 0.0) + electrical_power(flow.power,
+                                                                        port.efficiency)
+    return out
+
+
+def _newton(base: Model, balanced: list, unknowns: list[int], kin, plain_solve, result):
+    """Newton's method on the bus residuals from ``result`` (the torques 0): the slopes
+    by differences once, then Broyden's updates (on a piecewise-linear residual, a step
+    within one piece lands on the root; across a kink the secant corrects it)."""
+    x = np.zeros(len(unknowns))
+    speeds = np.array([kin.speed(base.ports[i].component) for i in unknowns])
+    scale = max([abs(p.power) for p in result.ports] + [abs(b.battery) for b in balanced]
+                + [1.0])
+    r = _residuals(result, balanced)
+    jac = None
+    for _ in range(MAX_STEPS):
+        if np.max(np.abs(r), initial=0.0) <= RTOL * scale or result.lock is not None:
+            return result
+        if jac is None:
+            jac = _slopes(base, balanced, unknowns, plain_solve, x, r,
+                          np.maximum(1e-7 * np.abs(x), 1e-7 * scale / np.abs(speeds)))
+        try:
+            dx = -np.linalg.solve(jac, r)
+        except np.linalg.LinAlgError:
+            break
+        x = x + dx
+        result = plain_solve(_with_torques(base, unknowns, x))
+        new = _residuals(result, balanced)
+        jac = jac + np.outer(new - r - jac @ dx, dx) / float(dx @ dx)
+        r = new
+    raise StaticsError("the bus balance did not settle (no machine torques meet the "
+                       "battery powers)", "buses")
+
+
+def _slopes(base, balanced, unknowns, plain_solve, x, r, steps) -> np.ndarray:
+    """The residuals' slopes by forward differences."""
+    jac = np.empty((len(r), len(x)))
+    for j, h in enumerate(steps):
+        shifted = x.copy()
+        shifted[j] += h
+        jac[:, j] = (_residuals(plain_solve(_with_torques(base, unknowns, shifted)),
+                                balanced) - r) / h
+    return jac
+
+
+def _with_machines(model: Model, result):
+    """The plain result re-attached to the model with buses, its machines and buses."""
+    result = dataclasses.replace(result, model=model)
+    flows = result.ports
+    machines = tuple(
+        MachineFlow(name=machine_name(port, model), component=port.component, bus=port.bus,
+                    efficiency=port.efficiency, speed=flows[port.index].speed,
+                    torque=flows[port.index].torque, power=flows[port.index].power,
+                    electrical_power=electrical_power(flows[port.index].power,
+                                                      port.efficiency) + 0.0)
+        for port in model.machines)
+    drawn = {}
+    for m in machines:
+        drawn[m.bus] = drawn.get(m.bus, 0.0) + m.electrical_power
+    buses = MappingProxyType({
+        name: BusFlow(name=name, given=bus.battery is not None,
+                      battery_power=float(bus.battery if bus.battery is not None
+                                          else drawn.get(name, 0.0)) + 0.0)
+        for name, bus in model.buses.items()})
+    return dataclasses.replace(result, machines=machines, buses=buses,
+                               total_loss=result.total_loss + sum(m.loss for m in machines))
