@@ -181,8 +181,18 @@ def _lever_diagram():
     return lever_diagram(result.model, result.speeds)
 
 
+def _cycle():
+    import io
+
+    from powergraph.analyses.cycle import cycle
+    return cycle(pg.load_model(MODELS / "ths2_power_split.yaml"),
+                 io.StringIO("engine.speed [rpm],engine.power [kW],wheels.speed [rpm]\n"
+                             "2000,30,400\n1500,15,1400\n"))
+
+
 RESULTS = [
     ("PowerFlowResult", _power_flow, True),
+    ("CycleResult", _cycle, True),
     ("ModeResult", _mode_result, True),
     ("GearTable", _gear_table, True),
     ("LeverDiagram", _lever_diagram, True),

@@ -157,6 +157,8 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
                      else _oriented(at, node, -power))
     if moving_view:
         torque = result.external_torques[model.frame_body]
+        if result.machines:     # the stators sit on the housing: the ground holds them too
+            torque = torque + sum(m.torque for m in result.machines)
         edges.append(_oriented(Node(GROUND, GROUND), body_node(result, model.frame_body),
                                torque * (0.0 - w_f)))
     nodes = element_nodes(result)
@@ -179,15 +181,16 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
 def machine_edges(result: "PowerFlowResult", w_f: float = 0.0) -> list[Flow]:
     """The arrows of the machines and buses (docs/hybrid.md): machine ↔ its body
     (mechanical), bus ↔ machine and battery ↔ bus (electrical), machine → loss; seen
-    from a moving body, the stator's reaction on the ground too."""
+    from a moving body, the stator's reaction on the housing too."""
     model, edges, loss = result.model, [], Node(LOSS, LOSS)
     for machine in result.machines:
         node, bus = Node(MACHINE, machine.name), Node(BUS, machine.bus)
         body = model.body_of[machine.component]
         edges.append(_oriented(node, body_node(result, body),
                                machine.torque * (machine.speed - w_f)))
-        if w_f != 0.0:
-            edges.append(_oriented(node, Node(GROUND, GROUND), machine.torque * w_f))
+        if w_f != 0.0:          # its stator's reaction on the housing, seen moving
+            edges.append(_oriented(node, body_node(result, model.frame_body),
+                                   machine.torque * w_f))
         edges.append(_oriented(bus, node, machine.electrical_power))
         edges.append(_arrow(node, loss, machine.loss))
     for name, flow in result.buses.items():
