@@ -59,7 +59,11 @@ MODEL_COMMANDS = {
     "tolerance": ["tolerance", "{m}", "--samples", "64", "--sobol-samples", "0", "--seed", "1",
                   "--json"],
     "map": ["map", "{m}", "--torque", "100:200:2", "--speed", "1000:2000:2", "--json"],
+    "modes": ["modes", "{m}", "--json"], "lever": ["lever", "{m}", "--json"],
+    "cycle": ["cycle", "{m}", "--points", "{out}/points.csv", "--json"],
 }
+#: The operating points given to ``cycle``: component 1's speed (most models have one).
+POINTS = "1.speed [rpm],duration [s]\n1000,1\n1500,2\n"
 LIMIT_VALUES = NOT_NUMBERS + ["0", "-0", "1e308", "-1e308", "1e-300", "10" + "0" * 30, "-5"]
 SLOW = 5.0       # seconds: a command over this counts as a hang
 ABORT = 120      # seconds: a command still running is stopped (a real hang)
@@ -127,6 +131,7 @@ def check_file(task: tuple) -> list[tuple]:
     rng = random.Random(seed)
     records = []
     with tempfile.TemporaryDirectory() as out:
+        Path(out, "points.csv").write_text(POINTS)
         commands = ("check", "solve") if big else MODEL_COMMANDS
         found = {}
         for name in commands:
