@@ -18,6 +18,8 @@ Examples
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 from typing import IO, Any, Mapping
 
@@ -155,25 +157,35 @@ def _sweep_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
     result = sweep(base, {path: v for (path, _, _), v in zip(points.columns, points.values)},
                    quiet=True)
     labels = {link: element_label(model, link) for link in result.losses}
+    p_in = _finite(result.input_power)
+    p_out = -_finite(result.output_power)
+    entering = (np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)).tolist()
+    leaving = (np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0)).tolist()
+    losses = {labels[k]: _finite(v).tolist() for k, v in result.losses.items()}
+    total = _finite(result.total_loss).tolist()
+    efficiency = np.asarray(result.efficiency, dtype=float).tolist()
+    status = [STATUS[s] for s in np.asarray(result.status).tolist()]
+    locking = np.asarray(result.self_locking).tolist()
+    durations = np.asarray(points.durations, dtype=float).tolist()
     rows = []
     for i in range(len(points)):
-        p_in, p_out = float(result.input_power[i]), -float(result.output_power[i])
-        status = STATUS[int(result.status[i])]
-        powers = [p_in, p_out]
-        entering = sum(p for p in powers if p > 0)
-        leaving = -sum(p for p in powers if p < 0)
-        verdict = ("locked" if status == "locked" else
-                   "self-locking" if bool(result.self_locking[i]) else
-                   f"error: {status}" if status != "ok" else
-                   ("ok" if entering > 0 else "no power"))
-        eff = float(result.efficiency[i])
+        verdict = ("locked" if status[i] == "locked" else
+                   "self-locking" if locking[i] else
+                   f"error: {status[i]}" if status[i] != "ok" else
+                   ("ok" if entering[i] > 0 else "no power"))
+        eff = efficiency[i]
         rows.append(CycleRow(
-            index=i, duration=float(points.durations[i]), mode=None,
-            power_in=_zero_nan(entering), power_out=_zero_nan(leaving),
-            loss=_zero_nan(float(result.total_loss[i])),
-            efficiency=eff if np.isfinite(eff) else None, verdict=verdict,
-            losses={labels[k]: _zero_nan(float(v[i])) for k, v in result.losses.items()}))
+            index=i, duration=durations[i], mode=None, power_in=entering[i],
+            power_out=leaving[i], loss=total[i],
+            efficiency=eff if math.isfinite(eff) else None, verdict=verdict,
+            losses={label: values[i] for label, values in losses.items()}))
     return tuple(rows)
+
+
+def _finite(values) -> np.ndarray:
+    """``values`` as floats with NaN (a variant not solved) as 0 and no -0."""
+    array = np.asarray(values, dtype=float)
+    return np.where(np.isfinite(array), array, 0.0) + 0.0
 
 
 def _zero_nan(value: float) -> float:

@@ -82,8 +82,7 @@ def read_points(handle: IO[str] | str, model: Model, source: str = "points") -> 
                              "duration [s], time [s] or mode")
         index = ports[m["port"].strip()]
         columns.append((f"ports.{index}.{m['what']}", index, m["what"]))
-        values.append(np.array([_cell(row, j, name, m["what"], m["unit"], source, r)
-                                for r, row in enumerate(body, start=2)]))
+        values.append(_column(body, j, name, m["what"], m["unit"], source))
     durations = _durations(body, time_col, header, source)
     modes = tuple(row[mode_col].strip() if mode_col is not None and mode_col < len(row)
                   else None for row in body)
@@ -95,6 +94,23 @@ def _port_index(model: Model) -> dict[str, int]:
     out = {str(p.component): p.index for p in model.ports}
     out.update({p.name: p.index for p in model.ports if p.name})
     return out
+
+
+def _column(body: list, j: int, name: str, kind: str, unit: str | None,
+            source: str) -> np.ndarray:
+    """Column ``j`` in SI: plain numbers read at once and scaled by the header's unit;
+    anything else (an empty cell, a unit in a cell, a value out of range) read cell by cell,
+    so that the message names its row."""
+    try:
+        numbers = np.array([row[j] for row in body], dtype=float)
+    except (ValueError, IndexError):
+        numbers = None
+    if numbers is not None and np.isfinite(numbers).all():
+        scale = _cell(["1"], 0, name, kind, unit, source, 2) if unit else 1.0
+        if unit is None or scale != 0.0:
+            return numbers * scale
+    return np.array([_cell(row, j, name, kind, unit, source, r)
+                     for r, row in enumerate(body, start=2)])
 
 
 def _cell(row: list, j: int, name: str, kind: str, unit: str | None, source: str,
