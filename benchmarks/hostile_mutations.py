@@ -220,6 +220,7 @@ def _renamed(data: Any, old: Any, new: str) -> Any | None:
 
     def swap(value: Any, key: str | None) -> Any:
         if isinstance(value, dict):
+            hits[0] += any(str(k) == str(old) for k in value)  # an id as a key: not renamed
             return {k: swap(v, k) for k, v in value.items()}
         if isinstance(value, list):
             return [swap(v, key) for v in value]
