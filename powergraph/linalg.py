@@ -49,6 +49,50 @@ ROUND_OFF = 1e-8
 WELL_SCALED = 1e3
 
 
+try:  # numpy's own kernels behind np.linalg.solve/inv, without their per-call checks
+    from numpy.linalg import _umath_linalg as _kernels
+
+    _SOLVE1, _INV = _kernels.solve1, _kernels.inv
+except (ImportError, AttributeError):  # pragma: no cover - another numpy layout
+    _SOLVE1 = _INV = None
+
+
+def _solve_small(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+    """``np.linalg.solve(matrix, rhs)`` for a small float system (the same LAPACK call,
+    so the same numbers), without its per-call overhead; None when it is exactly
+    singular or the solution is not finite."""
+    if _SOLVE1 is None:  # pragma: no cover
+        try:
+            x = np.linalg.solve(matrix, rhs)
+        except np.linalg.LinAlgError:
+            return None
+    else:
+        with np.errstate(all="ignore"):
+            x = _SOLVE1(matrix, rhs)
+    return x if np.isfinite(x).all() else None
+
+
+def dense_condition(matrix: np.ndarray) -> float:
+    """The 2-norm condition number of a small square matrix as far as
+    :data:`COND_LIMIT` needs it: exact (``np.linalg.cond``) when it is near the limit,
+    else a cheap bound from the 1-norm one (``κ1/n <= κ2 <= n·κ1``) on the same side.
+
+    >>> dense_condition(np.eye(3)) < COND_LIMIT, dense_condition(np.ones((3, 3))) < COND_LIMIT
+    (True, False)
+    """
+    n = len(matrix)
+    if _INV is not None and n:
+        with np.errstate(all="ignore"):
+            inverse = _INV(matrix)
+        if np.isfinite(inverse).all():
+            k1 = float(np.abs(matrix).sum(axis=0).max() * np.abs(inverse).sum(axis=0).max())
+            if n * k1 < COND_LIMIT:
+                return n * k1
+            if k1 > n * COND_LIMIT:
+                return k1 / n
+    return float(np.linalg.cond(matrix))
+
+
 def use_sparse(n_unknown: int) -> bool:
     """Whether a system of ``n_unknown`` unknowns takes the sparse path.
 
@@ -127,7 +171,9 @@ class Triplets:
 
 @dataclass(frozen=True)
 class Solved:
-    """A square system's solution and the condition number of its scaled system."""
+    """A square system's solution and the condition number of its scaled system (for a
+    small dense system, a bound of it on the same side of :data:`COND_LIMIT`:
+    :func:`dense_condition`)."""
 
     x: np.ndarray
     condition: float
@@ -182,6 +228,18 @@ def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
     return Solved(x, condition())
 
 
+def solve_dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None = None,
+                       passes: int = 1) -> Solved:
+    """:func:`solve_square` of a small system given as a dense matrix (its dense path).
+
+    >>> solve_dense_square(np.array([[2.0, 0.0], [0.0, 4.0]]), np.array([1.0, 1.0])).x
+    array([0.5 , 0.25])
+    """
+    if len(rhs) == 0:
+        return Solved(np.zeros(0), 1.0)
+    return _dense_square(a, rhs, guess, passes)
+
+
 def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
                   passes: int) -> Solved:
     """:func:`solve_square` for a small dense matrix (the same steps, fewer calls)."""
@@ -205,15 +263,10 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
         r = np.abs(m).max(axis=1)
         r[r == 0] = 1.0
         m /= r[:, None]
-        try:
-            return d * np.linalg.solve(m, rhs / r), m
-        except np.linalg.LinAlgError:
-            return None, m
+        y = _solve_small(m, rhs / r)
+        return (None if y is None else d * y), m
 
-    try:
-        x = np.linalg.solve(a, rhs) if guess is None else scaled(scales(np.abs(guess)))[0]
-    except np.linalg.LinAlgError:
-        return failed
+    x = _solve_small(a, rhs) if guess is None else scaled(scales(np.abs(guess)))[0]
     if x is None or not np.all(np.isfinite(x)):
         return failed
     d = scales(x)
@@ -223,7 +276,7 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
         # only its condition is still needed.
         r = np.abs(a * d).max(axis=1)
         r[r == 0] = 1.0
-        return Solved(x, float(np.linalg.cond(a * d / r[:, None])))
+        return Solved(x, dense_condition(a * d / r[:, None]))
     for k in range(MAX_PASSES):
         x, m = scaled(d)
         if x is None or not np.all(np.isfinite(x)):
@@ -232,7 +285,7 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
         if k + 1 >= passes and np.all(np.abs(np.log(following / d)) < np.log(SETTLED)):
             break
         d = following
-    return Solved(x, float(np.linalg.cond(m)))
+    return Solved(x, dense_condition(m))
 
 
 def _scaled_solve(t: Triplets, rhs: np.ndarray, d: np.ndarray,
