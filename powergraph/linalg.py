@@ -246,17 +246,22 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
     failed = Solved(np.full(len(rhs), np.nan), np.inf)
     nonzero = a != 0
     magnitude = np.abs(a)
+    rhs_size = np.abs(rhs)
 
     def scales(x: np.ndarray) -> np.ndarray:
-        terms = np.maximum((magnitude * np.abs(x)).max(axis=1), np.abs(rhs))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            implied = np.where(nonzero & (terms[:, None] > 0), terms[:, None] / magnitude,
-                               np.inf).min(axis=0)
         d = np.abs(x)
-        d = np.where((d < ROUND_OFF * implied) & np.isfinite(implied), implied, d)
-        if not np.any(d > 0):
+        terms = np.maximum((magnitude * d).max(axis=1), rhs_size)[:, None]
+        implied = np.divide(terms, magnitude, out=np.full(a.shape, np.inf),
+                            where=nonzero & (terms > 0)).min(axis=0)
+        small = d < ROUND_OFF * implied
+        if small.any():
+            d = np.where(small & np.isfinite(implied), implied, d)
+        positive = d > 0
+        if positive.all():
+            return d
+        if not positive.any():
             return np.ones_like(d)
-        return np.where(d > 0, d, d[d > 0].min())
+        return np.where(positive, d, d[positive].min())
 
     def scaled(d: np.ndarray):
         m = a * d

@@ -8,13 +8,14 @@ drives). Each body's element torques plus its external torque sum to zero. Unkno
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
 
 from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
-from powergraph.kinematics.elements import body_columns
+from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
 from powergraph.linalg import (
     SVD_RTOL,
     Triplets,
@@ -151,29 +152,31 @@ class _Layout:
 
 def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layout | None:
     """The layout of a small square balance whose unknown torques sit on distinct bodies
-    and whose elements touch three distinct bodies (else None: the general path);
-    cached per model for its own elements and the same unknown bodies."""
-    key = ("statics.layout", loads.unknown)
-    cached = model.derived.get(key)
-    if cached is not None and cached[0] is elements:
-        return cached[1]
-    row = {body.id: r for r, body in enumerate(model.bodies)}
-    n_el, n_ext = len(elements), len(loads.unknown)
-    bodies = body_columns(elements, row).astype(np.int64).reshape(n_el, 3)
-    unknown_rows = np.array([row[b] for b in loads.unknown], dtype=np.int64)
+    and whose elements touch three distinct bodies (else None: the general path). It
+    depends on which bodies each element touches only, so it is kept for the last few
+    structures (a friction solve re-solves one structure with new efficiencies)."""
+    return _layout_of(tuple(body.id for body in model.bodies),
+                      tuple(map(ELEMENT_BODIES, elements)), loads.unknown)
+
+
+@lru_cache(maxsize=64)
+def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], ...],
+               unknown: tuple[str, ...]) -> _Layout | None:
+    row = {body: r for r, body in enumerate(body_ids)}
+    n_el, n_ext = len(triples), len(unknown)
+    bodies = np.array([[row[b] for b in triple] for triple in triples],
+                      dtype=np.int64).reshape(n_el, 3)
+    unknown_rows = np.array([row[b] for b in unknown], dtype=np.int64)
     k = np.arange(n_el)
     rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], unknown_rows])
     cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
-    layout = None
-    square = len(model.bodies) == n_el + n_ext and not use_sparse(n_el)
+    square = len(body_ids) == n_el + n_ext and not use_sparse(n_el)
     distinct = len(np.unique(rows * (n_el + n_ext) + cols)) == len(rows)
-    if square and distinct and len(np.unique(unknown_rows)) == n_ext:
-        order = np.lexsort((cols, rows))
-        layout = _Layout(order, rows[order], cols[order], unknown_rows,
-                         np.setdiff1d(np.arange(len(model.bodies)), unknown_rows))
-    if elements is model.derived.get("kinematics.elements"):
-        model.derived[key] = (elements, layout)
-    return layout
+    if not (square and distinct and len(np.unique(unknown_rows)) == n_ext):
+        return None
+    order = np.lexsort((cols, rows))
+    return _Layout(order, rows[order], cols[order], unknown_rows,
+                   np.setdiff1d(np.arange(len(body_ids)), unknown_rows))
 
 
 def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, factors,
