@@ -155,6 +155,8 @@ def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layou
     and whose elements touch three distinct bodies (else None: the general path). It
     depends on which bodies each element touches only, so it is kept for the last few
     structures (a friction solve re-solves one structure with new efficiencies)."""
+    if use_sparse(len(elements)):
+        return None
     return _layout_of(tuple(body.id for body in model.bodies),
                       tuple(map(ELEMENT_BODIES, elements)), loads.unknown)
 
