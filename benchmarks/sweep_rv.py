@@ -6,6 +6,8 @@
 
 (a) ``powergraph.analyses.sweep`` — the model compiled once (:func:`compile_sweep`);
 (b) :func:`closed_form` below — the same virtual-power physics, derived by hand;
+(b') the same closed form as a numba kernel (one ``prange`` loop over the variants, both
+     cores; skipped without numba), reported as ``compiled_vs_numba``;
 (c) a Python loop of single solves (``powergraph.solve``) on ``--loop`` of them,
     extrapolated (each variant model is made by ``dataclasses.replace``, no validation,
     so the loop is as fast as it can be).
@@ -94,6 +96,41 @@ def closed_form(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, n
             "self_locking": efficiency <= 0.0, "valid": z5 > z4}
 
 
+def numba_closed_form():
+    """:func:`closed_form` as one numba loop over the variants on every core (``prange``),
+    or None without numba (the ``fast`` extra): what a hand-written compiled kernel of the
+    same outputs costs."""
+    try:
+        import numba
+    except ImportError:
+        return None
+
+    @numba.njit(parallel=True, cache=True)
+    def kernel(z1, z2, z4, z5, eta1, eta2, power, ratio, efficiency, loss_12, loss_45,
+               total_loss, self_locking, valid):
+        for j in numba.prange(len(z1)):
+            k = z2[j] / z1[j]
+            ratio[j] = 1.0 + k * z5[j] / (z5[j] - z4[j])
+            efficiency[j] = (1.0 + k * eta1[j] * z5[j] / (z5[j] - z4[j] * eta2[j])) / ratio[j]
+            loss_12[j] = power * (1.0 - 1.0 / ratio[j]) * (1.0 - eta1[j])
+            total_loss[j] = power * (1.0 - efficiency[j])
+            loss_45[j] = total_loss[j] - loss_12[j]
+            self_locking[j] = efficiency[j] <= 0.0
+            valid[j] = z5[j] > z4[j]
+
+    def run(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, np.ndarray]:
+        n = len(z1)
+        out = {name: np.empty(n) for name in ("ratio", "efficiency", "loss_12", "loss_45",
+                                               "total_loss")}
+        flags = {name: np.empty(n, dtype=bool) for name in ("self_locking", "valid")}
+        kernel(z1, z2, z4, z5, eta1, eta2, power, out["ratio"], out["efficiency"],
+               out["loss_12"], out["loss_45"], out["total_loss"], flags["self_locking"],
+               flags["valid"])
+        return {**out, **flags}
+
+    return run
+
+
 def loop(model, values: dict[str, np.ndarray], count: int) -> tuple[float, np.ndarray]:
     """Seconds for ``count`` single solves, and their (ratio, efficiency) rows."""
     import powergraph as pg
@@ -152,9 +189,23 @@ def measure(n: int, n_loop: int, repeat: int, seed: int) -> dict:
     evaluate = compile_sweep(model, list(PATHS))
     compile_s = time.perf_counter() - start
     args = [values[p] for p in PATHS]
-    times, first = best_times({"compiled": lambda: evaluate(values, quiet=True),
-                               "closed": lambda: closed_form(*args)}, repeat)
+    runs = {"compiled": lambda: evaluate(values, quiet=True),
+            "closed": lambda: closed_form(*args)}
+    kernel = numba_closed_form()
+    if kernel is not None:
+        runs["numba"] = lambda: kernel(*args)
+    times, first = best_times(runs, repeat)
     swept, hand = evaluate(values, quiet=True), closed_form(*args)
+    numba_row = {}
+    if kernel is not None:
+        compiled_hand = kernel(*args)
+        numba_row = {
+            "numba_per_s": round(n / times["numba"]),
+            "compiled_vs_numba": round(times["compiled"] / times["numba"], 3),
+            "numba_s": round(times["numba"], 4), "numba_first_s": round(first["numba"], 4),
+            "numba_max_abs_diff": float(max(
+                np.max(np.abs(compiled_hand[key] - hand[key])) for key in
+                ("ratio", "efficiency", "loss_12", "loss_45", "total_loss")))}
     if not (np.all(hand["valid"]) and np.all(swept.converged)):
         raise SystemExit("a variant left the closed form's direction pattern")
     diff = max(np.max(np.abs(swept.formal_efficiency - hand["efficiency"])),
@@ -167,6 +218,7 @@ def measure(n: int, n_loop: int, repeat: int, seed: int) -> dict:
     return {"variants": n, "compiled_per_s": round(compiled_per_s),
             "closed_form_per_s": round(n / times["closed"]), "loop_per_s": round(loop_per_s),
             "compiled_vs_closed": round(times["compiled"] / times["closed"], 3),
+            **numba_row,
             "compiled_vs_loop": round(compiled_per_s / loop_per_s, 1),
             "max_abs_diff": float(diff), "peak_mb": round(peak, 1),
             "compile_s": round(compile_s, 3), "compiled_s": round(times["compiled"], 4),

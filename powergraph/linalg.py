@@ -23,6 +23,8 @@ singularity, since entrywise relative round-off is the same in every scaling.
 an upper bound of the rank) and confirms it numerically on the matched square part, solved
 scaled; only when that part is numerically singular (redundant loops with consistent
 ratios) does it fall back to the singular values of the equilibrated dense matrix.
+
+The dense path (small systems) is :mod:`powergraph.linalg_dense`, re-exported here.
 """
 from __future__ import annotations
 
@@ -31,22 +33,24 @@ from typing import Callable
 
 import numpy as np
 
+from powergraph.linalg_dense import (  # noqa: F401 - re-exported: the dense path's names
+    COND_LIMIT,
+    MAX_PASSES,
+    ROUND_OFF,
+    SETTLED,
+    WELL_SCALED,
+    Solved,
+    _dense_square,
+    dense_condition,
+    solve_dense_square,
+)
+
 #: Systems with at least this many unknowns are solved with scipy.sparse.
 SPARSE_FROM = 100
 #: None: choose by size; "dense" or "sparse": force that path (tests).
 PATH: str | None = None
-#: A scaled system whose condition number reaches this is singular.
-COND_LIMIT = 1e12
 #: Relative threshold of the singular values in the dense fallback.
 SVD_RTOL = 1e-10
-#: Scaled re-solves of a square system, at most.
-MAX_PASSES = 12
-#: The scales have settled when no unknown's magnitude changes by this factor.
-SETTLED = 8.0
-#: An unknown smaller than this fraction of its row's other terms is scaled like them.
-ROUND_OFF = 1e-8
-#: A small dense system whose unknowns span at most this factor is solved once, unscaled.
-WELL_SCALED = 1e3
 
 
 def use_sparse(n_unknown: int) -> bool:
@@ -125,18 +129,6 @@ class Triplets:
                         self.values * col_scale[self.cols] / row_scale[self.rows], self.shape)
 
 
-@dataclass(frozen=True)
-class Solved:
-    """A square system's solution and the condition number of its scaled system."""
-
-    x: np.ndarray
-    condition: float
-
-    @property
-    def regular(self) -> bool:
-        return bool(np.all(np.isfinite(self.x))) and self.condition < COND_LIMIT
-
-
 def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
                  passes: int = 1) -> Solved:
     """Solve a square system, re-solved at least ``passes`` times scaled by its own
@@ -180,59 +172,6 @@ def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
             break
         d = following
     return Solved(x, condition())
-
-
-def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
-                  passes: int) -> Solved:
-    """:func:`solve_square` for a small dense matrix (the same steps, fewer calls)."""
-    failed = Solved(np.full(len(rhs), np.nan), np.inf)
-    nonzero = a != 0
-    magnitude = np.abs(a)
-
-    def scales(x: np.ndarray) -> np.ndarray:
-        terms = np.maximum((magnitude * np.abs(x)).max(axis=1), np.abs(rhs))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            implied = np.where(nonzero & (terms[:, None] > 0), terms[:, None] / magnitude,
-                               np.inf).min(axis=0)
-        d = np.abs(x)
-        d = np.where((d < ROUND_OFF * implied) & np.isfinite(implied), implied, d)
-        if not np.any(d > 0):
-            return np.ones_like(d)
-        return np.where(d > 0, d, d[d > 0].min())
-
-    def scaled(d: np.ndarray):
-        m = a * d
-        r = np.abs(m).max(axis=1)
-        r[r == 0] = 1.0
-        m /= r[:, None]
-        try:
-            return d * np.linalg.solve(m, rhs / r), m
-        except np.linalg.LinAlgError:
-            return None, m
-
-    try:
-        x = np.linalg.solve(a, rhs) if guess is None else scaled(scales(np.abs(guess)))[0]
-    except np.linalg.LinAlgError:
-        return failed
-    if x is None or not np.all(np.isfinite(x)):
-        return failed
-    d = scales(x)
-    if passes <= 1 and d.max() <= WELL_SCALED * d.min():
-        # Unknowns within three decades: partial pivoting (on the system as given or scaled
-        # by the guess) already solved it as accurately as further scaled passes would;
-        # only its condition is still needed.
-        r = np.abs(a * d).max(axis=1)
-        r[r == 0] = 1.0
-        return Solved(x, float(np.linalg.cond(a * d / r[:, None])))
-    for k in range(MAX_PASSES):
-        x, m = scaled(d)
-        if x is None or not np.all(np.isfinite(x)):
-            return failed
-        following = scales(x)
-        if k + 1 >= passes and np.all(np.abs(np.log(following / d)) < np.log(SETTLED)):
-            break
-        d = following
-    return Solved(x, float(np.linalg.cond(m)))
 
 
 def _scaled_solve(t: Triplets, rhs: np.ndarray, d: np.ndarray,

@@ -66,3 +66,4 @@ def test_matching_finds_an_augmenting_path() -> None:
     column 0 to row 1."""
     t = Triplets.build([0, 0, 1], [0, 1, 0], [1.0, 1.0, 1.0], (2, 2))
     assert matching(t).tolist() == [1, 0]
+

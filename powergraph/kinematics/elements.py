@@ -101,7 +101,14 @@ def willis_ratio(link: Link, model: Model) -> float:
 
 
 def elements_of(model: Model) -> tuple[Element, ...]:
-    """Meshes and couplings of ``model`` in file order."""
+    """Meshes and couplings of ``model`` in file order (computed once per model)."""
+    cached = model.derived.get("kinematics.elements")
+    if cached is None:
+        cached = model.derived["kinematics.elements"] = _elements_of(model)
+    return cached
+
+
+def _elements_of(model: Model) -> tuple[Element, ...]:
     out = []
     for link in model.links:
         if link.type == "mesh":

@@ -133,9 +133,8 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     (-4.0, -2.5)
     """
     elements = elements_of(model) if elements is None else elements
-    system = constraint_triplets(model, elements)
+    rows, dof = _structure(model, elements)
     n_bodies = len(model.bodies)
-    dof = n_bodies - rank(system)
     if dof == 0:
         raise KinematicsError("the train cannot move (0 degrees of freedom): its meshes and "
                               "couplings lock every body")
@@ -146,7 +145,6 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
         if index not in row_of:
             raise KinematicsError(f"links[{index}] is not a mesh or coupling: it has no slip")
         rhs[row_of[index]] = value
-    rows = system.part(np.arange(len(elements)), np.arange(n_bodies))
     solution = _solve_reduced(model, rows, rhs, given)
     inputs, outputs = model.inputs, model.outputs
     ids = [b.id for b in model.bodies]
@@ -155,6 +153,21 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
         body_of=model.body_of, dof=dof, given=MappingProxyType(dict(given)),
         input_component=inputs[0].component if len(inputs) == 1 else None,
         output_component=outputs[0].component if len(outputs) == 1 else None)
+
+
+def _structure(model: Model, elements: tuple[Element, ...]) -> tuple[Triplets, int]:
+    """The element rows of the constraints (without ``w_frame = 0``) and the DOF: they
+    depend on the model alone, so they are computed once per model (for its own
+    elements; other elements are computed each time)."""
+    cached = model.derived.get("kinematics.structure")
+    if cached is not None and cached[0] is elements:
+        return cached[1], cached[2]
+    system = constraint_triplets(model, elements)
+    dof = len(model.bodies) - rank(system)
+    rows = system.part(np.arange(len(elements)), np.arange(len(model.bodies)))
+    if elements is model.derived.get("kinematics.elements"):
+        model.derived["kinematics.structure"] = (elements, rows, dof)
+    return rows, dof
 
 
 def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
@@ -176,10 +189,10 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
     is_known[list(known)] = True
     unknown = np.flatnonzero(~is_known)
     reduced_rhs = rhs - rows.dot(solution)
-    reduced = rows.part(np.arange(rows.shape[0]), unknown)
+    reduced, square = _reduced(model, rows, unknown)
     determined = True
     if unknown.size:
-        values, determined = _solve_unknown(reduced, reduced_rhs)
+        values, determined = _solve_unknown(reduced, reduced_rhs, square)
         solution[unknown] = values
     residual = rows.dot(solution) - rhs
     scale = max(1.0, float(np.max(np.abs(solution))))
@@ -192,17 +205,36 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
     return solution
 
 
-def _solve_unknown(reduced: Triplets, rhs: np.ndarray) -> tuple[np.ndarray, bool]:
-    """The unknown speeds and whether they are determined: the rows matched to them solved
-    scaled when the structure allows (the usual case); else dense least squares and the
-    rank of the equilibrated matrix."""
+def _reduced(model: Model, rows: Triplets, unknown: np.ndarray):
+    """The constraint rows on the unknown speeds, and ``(matched rows, their column per
+    row, the matched square part)``; cached per model and set of unknowns when ``rows``
+    are the model's own (:func:`_structure`)."""
+    cached = model.derived.get("kinematics.structure")
+    key = ("kinematics.reduced", unknown.tobytes())
+    own = cached is not None and cached[1] is rows
+    if own and key in model.derived:
+        return model.derived[key]
+    reduced = rows.part(np.arange(rows.shape[0]), unknown)
     col_of = matching(reduced)
-    rows = np.flatnonzero(col_of >= 0)
+    matched = np.flatnonzero(col_of >= 0)
+    out = reduced, (matched, col_of[matched], reduced.part(matched, col_of[matched]))
+    if own:
+        model.derived[key] = out
+    return out
+
+
+def _solve_unknown(reduced: Triplets, rhs: np.ndarray,
+                   square: tuple[np.ndarray, np.ndarray, Triplets]) -> tuple[np.ndarray, bool]:
+    """The unknown speeds and whether they are determined: the rows matched to them
+    (``square``: the rows, their columns, that part) solved scaled when the structure
+    allows (the usual case); else dense least squares and the rank of the equilibrated
+    matrix."""
+    rows, columns, part = square
     if rows.size == reduced.shape[1]:
-        solved = solve_square(reduced.part(rows, col_of[rows]), rhs[rows])
+        solved = solve_square(part, rhs[rows])
         if solved.regular:
             values = np.empty(reduced.shape[1])
-            values[col_of[rows]] = solved.x
+            values[columns] = solved.x
             return values, True
     matrix = reduced.dense()
     values = np.linalg.lstsq(matrix, rhs, rcond=None)[0]

@@ -170,6 +170,14 @@ class Model:
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
     @cached_property
+    def derived(self) -> dict:
+        """A store for what later layers compute once per model and reuse on every solve
+        (its elements, the structure of its linear systems): keyed by the computing
+        module's name; not part of the model's value (ignored by ``==``, and a
+        ``dataclasses.replace`` copy starts empty)."""
+        return {}
+
+    @cached_property
     def frame(self) -> str:
         """Id of the frame component."""
         return next(c.id for c in self.components.values() if c.is_frame)

@@ -56,6 +56,9 @@ _FAST = {
     "length": {"mm": 1.0, "m": 1e3, "cm": 10.0, "um": 1e-3, "µm": 1e-3},
 }
 _CASE_SENSITIVE_POWER = {"W": 1.0, "kW": 1e3, "MW": 1e6, "mW": 1e-3}
+# Common spellings converted without pint, by target unit (case matters: mPa vs MPa).
+_FAST_IN = {"mPa*s": {"mPa*s": 1.0, "mPa s": 1.0, "mPa·s": 1.0, "mPa.s": 1.0, "cP": 1.0,
+                      "Pa*s": 1e3, "Pa s": 1e3, "Pa·s": 1e3, "Pa.s": 1e3}}
 _NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?:\s+|(?=\D)|$)"
                           r"(.*?)\s*", re.DOTALL)
 # One token of a unit expression: a name, the factor 1, an operator, a power, a parenthesis.
@@ -150,6 +153,9 @@ def parse_in_unit(text: str, unit: str, what: str, path: str) -> float:
     30.0
     """
     number, expression = _split(text, what, path)
+    factor = _FAST_IN.get(unit, {}).get(expression)
+    if factor is not None:
+        return number * factor
     return _convert(number, expression, unit, text, what, path) if expression else number
 
 

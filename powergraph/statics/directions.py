@@ -13,6 +13,7 @@ own bodies.
 """
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Callable
 
 import numpy as np
@@ -70,18 +71,31 @@ def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.
     The frame is left out (it collects every reaction of the train), unless the element
     touches nothing else. A force far below this scale is round-off: nothing passes.
     """
+    bodies, outside, n_bodies, frame = _columns(tuple(map(ELEMENT_BODIES, elements)),
+                                                tuple(external), frame_body)
+    load = np.zeros(n_bodies)
+    np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
+    ratios = np.array([e.ratio for e in elements], dtype=float)
+    return own_scales(bodies, ratios, forces, np.asarray(factors, dtype=float), load, frame)
+
+
+@lru_cache(maxsize=64)
+def _columns(triples: tuple[tuple[str, str, str], ...], external: tuple[str, ...],
+             frame_body: str) -> tuple[np.ndarray, np.ndarray, int, int]:
+    """:func:`force_scales`' body columns: each element's three, the externally loaded
+    bodies', how many bodies, the frame's (-1 if no element touches it). Kept for the last
+    few structures (each solve of a train asks for the same one several times)."""
     index: dict[str, int] = {}
-    for triple in map(ELEMENT_BODIES, elements):
+    for triple in triples:
         for b in triple:
             if b not in index:
                 index[b] = len(index)
-    bodies = body_columns(elements, index).astype(np.int64).reshape(-1, 3)
+    bodies = np.array([[index[b] for b in triple] for triple in triples],
+                      dtype=np.int64).reshape(-1, 3)
     outside = np.array([index.setdefault(b, len(index)) for b in external], dtype=np.int64)
-    load = np.zeros(len(index))
-    np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
-    ratios = np.array([e.ratio for e in elements], dtype=float)
-    return own_scales(bodies, ratios, forces, np.asarray(factors, dtype=float), load,
-                      index.get(frame_body, -1))
+    frame = index.get(frame_body, -1)
+    bodies.flags.writeable = outside.flags.writeable = False
+    return bodies, outside, len(index), frame
 
 
 def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,

@@ -8,18 +8,21 @@ drives). Each body's element torques plus its external torque sum to zero. Unkno
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Mapping
 
 import numpy as np
 
 from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
-from powergraph.kinematics.elements import body_columns
+from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
 from powergraph.linalg import (
     SVD_RTOL,
     Triplets,
     equilibrated,
+    solve_dense_square,
     solve_square,
+    use_sparse,
 )
 from powergraph.model.spec import Model
 
@@ -107,13 +110,15 @@ def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
     """
     row = {body.id: r for r, body in enumerate(model.bodies)}
     n_el = len(elements)
-    system = equilibrium_triplets(model, elements, loads, factors)
     rhs = np.zeros(len(model.bodies))
     for body, torque in loads.given.items():
         rhs[row[body]] -= torque
     if guess is None and speeds is not None:
         guess = expected_sizes(elements, loads, speeds)
-    solution, indeterminate = _solve(system, rhs, n_el, loads, guess)
+    solution, indeterminate = _solve_small(model, elements, loads, factors, rhs, guess), False
+    if solution is None:
+        system = equilibrium_triplets(model, elements, loads, factors)
+        solution, indeterminate = _solve(system, rhs, n_el, loads, guess)
     external = dict(loads.given)
     external.update({body: float(solution[n_el + j]) for j, body in enumerate(loads.unknown)})
     return Equilibrium(forces=solution[:n_el], external=external, indeterminate=indeterminate)
@@ -131,6 +136,79 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     out = np.zeros(len(rel))
     np.divide(power, rel, out=out, where=rel > 0)
     return out
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Where the torque balance's entries go, sorted by row then column (the order of
+    :class:`Triplets`): what :func:`_solve_small` needs besides the factors."""
+
+    order: np.ndarray        # entries (a, b, carrier of each element, then external) sorted
+    rows: np.ndarray         # their rows and columns, in that order
+    cols: np.ndarray
+    unknown_rows: np.ndarray  # the row of each unknown external torque, in column order
+    others: np.ndarray       # the other rows, which fix the forces
+
+
+def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layout | None:
+    """The layout of a small square balance whose unknown torques sit on distinct bodies
+    and whose elements touch three distinct bodies (else None: the general path). It
+    depends on which bodies each element touches only, so it is kept for the last few
+    structures (a friction solve re-solves one structure with new efficiencies)."""
+    if use_sparse(len(elements)):
+        return None
+    return _layout_of(tuple(body.id for body in model.bodies),
+                      tuple(map(ELEMENT_BODIES, elements)), loads.unknown)
+
+
+@lru_cache(maxsize=64)
+def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], ...],
+               unknown: tuple[str, ...]) -> _Layout | None:
+    row = {body: r for r, body in enumerate(body_ids)}
+    n_el, n_ext = len(triples), len(unknown)
+    bodies = np.array([[row[b] for b in triple] for triple in triples],
+                      dtype=np.int64).reshape(n_el, 3)
+    unknown_rows = np.array([row[b] for b in unknown], dtype=np.int64)
+    k = np.arange(n_el)
+    rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], unknown_rows])
+    cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
+    square = len(body_ids) == n_el + n_ext and not use_sparse(n_el)
+    distinct = len(np.unique(rows * (n_el + n_ext) + cols)) == len(rows)
+    if not (square and distinct and len(np.unique(unknown_rows)) == n_ext):
+        return None
+    order = np.lexsort((cols, rows))
+    return _Layout(order, rows[order], cols[order], unknown_rows,
+                   np.setdiff1d(np.arange(len(body_ids)), unknown_rows))
+
+
+def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, factors,
+                 rhs: np.ndarray, guess: np.ndarray | None) -> np.ndarray | None:
+    """:func:`_solve_forces_first` for a small balance on a dense matrix built from the
+    cached layout (the same numbers, without rebuilding the structure each time); None
+    when the layout does not apply or the forces' part is not regular."""
+    layout = _layout(model, elements, loads)
+    if layout is None:
+        return None
+    n_el = len(elements)
+    ratio = np.array([el.ratio for el in elements], dtype=float)
+    on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
+    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c,
+                             np.ones(len(loads.unknown))])[layout.order]
+    matrix = np.zeros((len(rhs), len(rhs)))
+    matrix[layout.rows, layout.cols] = values
+    matrix += 0.0   # no negative zeros, as Triplets drops them
+    solved = solve_dense_square(matrix[layout.others][:, :n_el], rhs[layout.others],
+                                None if guess is None else guess[:n_el])
+    if not solved.regular:
+        return None
+    x = np.zeros(len(rhs))
+    x[:n_el] = solved.x
+    force = layout.cols < n_el
+    element_torques = np.bincount(layout.rows[force],
+                                  weights=values[force] * solved.x[layout.cols[force]],
+                                  minlength=len(rhs))
+    x[n_el:] = rhs[layout.unknown_rows] - element_torques[layout.unknown_rows]
+    return x
 
 
 def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,

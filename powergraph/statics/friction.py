@@ -23,7 +23,6 @@ from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 from powergraph.errors import SolveError
-from powergraph.gears.mesh_loss import mesh_loss, path_of_contact
 from powergraph.kinematics.elements import element_stencil
 from powergraph.model.spec import Model
 from powergraph.statics.bearings import bearing_states, torques_on_bodies, with_bearings
@@ -153,11 +152,15 @@ def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
 
 @lru_cache(maxsize=1024)
 def _path(geometry: Any) -> Any:
+    from powergraph.gears.mesh_loss import path_of_contact  # only trains with friction
+
     return path_of_contact(geometry)
 
 
 @lru_cache(maxsize=1024)
 def _loss_factor(geometry: Any) -> float:
+    from powergraph.gears.mesh_loss import mesh_loss
+
     return mesh_loss(geometry).loss_factor
 
 

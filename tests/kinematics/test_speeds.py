@@ -48,3 +48,21 @@ def test_backdriven_swaps_ports_and_keeps_the_motion() -> None:
     assert back.inputs[0].power == model.inputs[0].power
     assert solve_speeds(back).speed("1") == pytest.approx(solve_speeds(model).speed("1"),
                                                           rel=1e-12)
+
+
+def test_the_structure_cached_per_model_does_not_leak_into_a_changed_copy() -> None:
+    """The rank and matchings are kept on the model; a copy with another tooth number
+    (dataclasses.replace) starts without them and gets its own ratio, 1 + z2 z5 / z1."""
+    import dataclasses
+    from types import MappingProxyType
+
+    model = pg.load_model(MODELS / "rv40e_wang2021.yaml")
+    assert solve_speeds(model).ratio == pytest.approx(1 + 36 * 40 / 12, rel=1e-12)
+    assert "kinematics.structure" in model.derived
+    components = dict(model.components)
+    components["2"] = dataclasses.replace(components["2"], teeth=30)
+    copy = dataclasses.replace(model, components=MappingProxyType(components))
+    assert copy.derived == {}
+    assert solve_speeds(copy).ratio == pytest.approx(1 + 30 * 40 / 12, rel=1e-12)
+    assert solve_speeds(model).ratio == pytest.approx(1 + 36 * 40 / 12, rel=1e-12)
+    assert copy != model and dataclasses.replace(model) == model

@@ -16,6 +16,7 @@ from powergraph.model import loads_model
 from powergraph.model.units import (
     _CASE_SENSITIVE_POWER,
     _FAST,
+    _FAST_IN,
     SI_UNITS,
     parse_in_unit,
     parse_quantity,
@@ -160,3 +161,26 @@ def test_the_grammar_spells_units_for_pint(unit: str, pint_text: str) -> None:
 
 def test_limits_are_stated_in_the_docs() -> None:
     assert re.search(r"64 characters", FORMAT_MD)
+
+
+@pytest.mark.parametrize("target,unit", [(t, u) for t, table in _FAST_IN.items() for u in table])
+def test_fast_viscosity_table_matches_pint(target: str, unit: str) -> None:
+    """The viscosities read without pint are pint's conversions."""
+    expected = UREG.Quantity(2.5, unit.replace(" ", "*").replace("·", "*")).to(target).magnitude
+    assert parse_in_unit(f"2.5 {unit}", target, "dynamic viscosity", "v") == \
+        pytest.approx(expected, rel=1e-15)
+
+
+@pytest.mark.slow
+def test_solving_the_friction_rv_does_not_load_pint() -> None:
+    """Its lubricant viscosity ("100 mPa*s") is a common spelling: pint, slow to import,
+    stays unloaded."""
+    import subprocess
+    import sys
+
+    code = ("import sys, powergraph as pg; pg.solve(pg.load_model('models/rv40e.yaml')); "
+            "print('pint' in sys.modules)")
+    root = Path(__file__).resolve().parents[2]
+    out = subprocess.run([sys.executable, "-c", code], cwd=root, capture_output=True,
+                         text=True, check=True)
+    assert out.stdout.strip() == "False"
