@@ -121,7 +121,8 @@ def stencil(ratio: Any, factor: Any = 1) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
 
 
 def solve_linear(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple[sp.Expr, list[sp.Expr]]:
-    """``matrix⁻¹ · rhs`` as adjugate over determinant, each entry cancelled.
+    """``matrix⁻¹ · rhs``, each entry cancelled (Cramer's rule, by fraction-free
+    elimination).
 
     Returns the expanded determinant and the solution; the caller decides what a
     vanishing determinant means. ``matrix`` must be square.
@@ -135,5 +136,12 @@ def solve_linear(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple[sp.Expr, list[sp.Ex
     det = sp.expand(matrix.det(method="bareiss"))
     if det == 0:
         return det, []
-    adjugate = matrix.adjugate(method="bareiss")
-    return det, [sp.cancel((adjugate[r, :] * rhs)[0, 0] / det) for r in range(matrix.rows)]
+    # Fraction-free elimination over the polynomial ring of the symbols (sympy's
+    # DomainMatrix): the same solution as the adjugate, without its n² cofactors (an
+    # eight-speed's balance: 0.15 s instead of 15 s).
+    from sympy.polys.matrices import DomainMatrix
+
+    a, b = DomainMatrix.from_Matrix(matrix).unify(DomainMatrix.from_Matrix(rhs))
+    numerators, denominator = a.solve_den(b)
+    den = a.domain.to_sympy(denominator)
+    return det, [sp.cancel(x / den) for x in numerators.to_Matrix()]
