@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import check_figure_path, load, new_axes, print_json, save_figure
+from powergraph.cli.common import (check_figure_path, load, new_axes, print_json, save_figure,
+                                   say_wrote)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -39,4 +40,5 @@ def run(args: argparse.Namespace) -> int:
         ax = new_axes((max(4.0, 2.2 * len(diagram.levers) + 1), 5.0))
         diagram.plot(ax=ax)
         save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
+        say_wrote(target, data_on_stdout=args.json)
     return 0

@@ -10,6 +10,7 @@ from powergraph.cli.common import (
     new_axes,
     print_json,
     save_figure,
+    say_wrote,
 )
 from powergraph.errors import ModelError, UsageError
 
@@ -41,6 +42,7 @@ def run(args: argparse.Namespace) -> int:
         ax = new_axes((7.0, 4.2))
         table.plot(ax=ax)
         save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
+        say_wrote(target, data_on_stdout=args.json)
     return 0
 
 
