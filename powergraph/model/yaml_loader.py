@@ -189,6 +189,9 @@ def load_yaml_text(text: str | bytes, source: str = "<model>") -> Any:
         mark = exc.problem_mark or exc.context_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown place"
         problem = exc.problem or exc.context or "invalid YAML"
+        if "nesting depth" in problem:   # PyYAML >= 6.0.4 bounds the depth in its parser
+            raise ModelError(f"the document nests more than {MAX_DEPTH} levels deep "
+                             f"({where})", source) from None
         raise ModelError(f"YAML syntax error at {where}: {problem}", source) from None
     except yaml.YAMLError as exc:
         raise ModelError(f"invalid YAML: {' '.join(str(exc).split())}", source) from None
