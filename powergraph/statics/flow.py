@@ -121,7 +121,8 @@ def element_node(result: "PowerFlowResult", element: "ElementFlow") -> str:
 
 
 def port_node(result: "PowerFlowResult", component: str, role: str) -> Node:
-    """``motor``/``generator``, or ``motor 1`` when the train has several of that role."""
+    """The port's node: kind ``motor``/``generator``, named so, or ``motor 1`` (the
+    component's id) when the train has several of that role."""
     base = MOTOR if role == "input" else GENERATOR
     ports = result.model.inputs if role == "input" else result.model.outputs
     return Node(base, base if len(ports) == 1 else f"{base} {result.model.raw_id(component)}")
