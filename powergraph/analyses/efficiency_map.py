@@ -92,6 +92,36 @@ class EfficiencyMap(Displayed):
                          ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in self.unconverged))
         return "\n".join(lines)
 
+    def loss_map(self) -> dict[str, np.ndarray]:
+        """The map as a transmission loss map, the form VECTO reads: per point (rows by
+        speed, then torque) the input speed (rpm), the input torque and the torque loss
+        referred to the input (N·m), both in the input's sense of rotation. The torque
+        loss is the lost power over the input speed, ``T_in − T_out·ω_out/ω_in``. Points
+        that did not converge are left out (:attr:`unconverged` names them).
+
+        Examples
+        --------
+        A pair with ratio 2 and η 0.98: at 10 N·m out, 10/(2·0.98) N·m in, of which
+        10/(2·0.98) − 5 are lost.
+
+        >>> from powergraph.model import model_from_dict
+        >>> pair = model_from_dict({"name": "pair", "components": {
+        ...     0: {"role": "frame"}, 1: {"teeth": 20}, 2: {"teeth": 40}},
+        ...     "links": [{"type": "mesh", "between": [1, 2], "efficiency": 0.98}],
+        ...     "ports": [{"component": 1, "role": "input", "speed": 100.0},
+        ...               {"component": 2, "role": "output"}]})
+        >>> rows = efficiency_map(pair, [10.0], [1000.0]).loss_map()
+        >>> round(float(rows["input_torque"][0]), 6), round(float(rows["torque_loss"][0]), 6)
+        (5.102041, 0.102041)
+        """
+        omega = np.abs(self.speeds_rpm * RAD_S_PER_RPM)[:, None]
+        input_torque = self.input_power / omega
+        torque_loss = input_torque * (1.0 - self.efficiency)
+        speed = np.broadcast_to(np.abs(self.speeds_rpm)[:, None], self.efficiency.shape)
+        kept = np.isfinite(torque_loss)
+        return {"speed_rpm": speed[kept], "input_torque": input_torque[kept],
+                "torque_loss": torque_loss[kept]}
+
     def plot(self, ax: Any = None, **kwargs: Any):
         """Contours of the efficiency with the rated torque marked (delegates to
         :func:`powergraph.plot.efficiency_map.plot_efficiency_map`)."""

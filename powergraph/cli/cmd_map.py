@@ -1,5 +1,6 @@
-"""``powergraph map MODEL --torque A:B:N --speed C:D:N [--rated T] [-o FILE] [--json]``:
-efficiency over output torque (N·m) × input speed (rpm)."""
+"""``powergraph map MODEL --torque A:B:N --speed C:D:N [--rated T] [-o FILE] [--json]
+[--loss-map FILE]``: efficiency over output torque (N·m) × input speed (rpm), and the
+same points as a transmission loss map (input speed, input torque, torque loss)."""
 from __future__ import annotations
 
 import argparse
@@ -8,8 +9,9 @@ import math
 import numpy as np
 
 from powergraph.cli.cmd_modes import add_mode_option, gear_model
-from powergraph.cli.common import (check_figure_path, load, number_option, print_json,
-                                   say_wrote, whole_option, write_atomically)
+from powergraph.cli.common import (check_figure_path, check_output_file, load,
+                                   number_option, print_json, say_wrote, whole_option,
+                                   write_atomically)
 from powergraph.errors import UsageError
 from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE
 
@@ -19,6 +21,8 @@ TORQUE_LIMIT = MAX_TORQUE
 SPEED_LIMIT = MAX_SPEED * 60 / (2 * math.pi)
 #: Most points along one axis.
 MAX_POINTS = 500
+#: The loss map's columns, as VECTO's transmission loss maps (.vtlm) name them.
+LOSS_MAP_HEADER = "Input Speed [rpm],Input Torque [Nm],Torque Loss [Nm]"
 
 
 def span_option(text: str, option: str, limit: float) -> np.ndarray:
@@ -55,6 +59,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="rated output torque, N·m (drawn as a line)")
     parser.add_argument("-o", "--output", metavar="FILE", help="write the map (PNG/SVG/PDF)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
+    parser.add_argument("--loss-map", metavar="FILE",
+                        help="write the points as a transmission loss map (.vtlm or .csv: "
+                             "input speed, input torque, torque loss, as VECTO reads it)")
     add_mode_option(parser, "map")
     parser.set_defaults(handler=run)
 
@@ -63,6 +70,8 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.efficiency_map import efficiency_map
 
     target = check_figure_path(args.output) if args.output else None
+    loss_target = (check_output_file(args.loss_map, "--loss-map", (".vtlm", ".csv"))
+                   if args.loss_map else None)
     torque = span_option(args.torque, "--torque", TORQUE_LIMIT)
     speed = span_option(args.speed, "--speed", SPEED_LIMIT)
     rated = (None if args.rated is None
@@ -75,4 +84,25 @@ def run(args: argparse.Namespace) -> int:
         write_atomically(target, lambda tmp: ax.figure.savefig(tmp, dpi=150,
                                                                bbox_inches="tight"))
         say_wrote(target, data_on_stdout=args.json)
+    if loss_target is not None:
+        write_loss_map(loss_target, result, data_on_stdout=args.json)
     return 0
+
+
+def write_loss_map(path, result, data_on_stdout: bool = False) -> None:
+    """The map's points as a loss map file (:meth:`EfficiencyMap.loss_map`); points that
+    did not converge are left out, and the user is told how many."""
+    rows = result.loss_map()
+    lines = [LOSS_MAP_HEADER] + [f"{n:.10g},{t:.10g},{loss:.10g}" for n, t, loss in
+                                 zip(rows["speed_rpm"], rows["input_torque"],
+                                     rows["torque_loss"])]
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write("\n".join(lines) + "\n")
+
+    write_atomically(path, write)
+    left_out = result.efficiency.size - len(lines) + 1
+    say_wrote(path, f"({len(lines) - 1} points" +
+              (f"; {left_out} left out: no converged solution)" if left_out else ")"),
+              data_on_stdout=data_on_stdout)

@@ -106,6 +106,45 @@ def check_output_file(path: str, option: str, suffixes: tuple[str, ...] = ()) ->
     return target
 
 
+def writes_a_file(action: argparse.Action) -> bool:
+    """Whether an option names a file or folder the command writes (its metavar says
+    FILE or DIR: every writing option is named so)."""
+    metavar = str(action.metavar or "")
+    return bool(action.option_strings) and ("FILE" in metavar or "DIR" in metavar)
+
+
+def refuse_overwriting_inputs(parser: argparse.ArgumentParser,
+                              args: argparse.Namespace) -> None:
+    """Refuse, before any work, an output that is one of the command's own input files
+    (the model, a points table): writing it would destroy what was read.
+
+    A :class:`~powergraph.errors.UsageError` naming the option (exit 2). A ``MODEL:MODE``
+    argument counts as its file.
+    """
+    outputs, inputs = [], []
+    for action in parser._actions:
+        value = getattr(args, action.dest, None)
+        strings = [v for v in (value if isinstance(value, list) else [value])
+                   if isinstance(v, str)]
+        if writes_a_file(action):
+            outputs += [(action.option_strings[0], v) for v in strings]
+        else:
+            inputs += strings
+    for option, path in outputs:
+        for given in inputs:
+            for candidate in {given, given.rpartition(":")[0]} - {""}:
+                if _same_file(path, candidate):
+                    raise UsageError(f"{option}: {path!r} is the input file {candidate!r}; "
+                                     "writing it would overwrite the input")
+
+
+def _same_file(path: str, other: str) -> bool:
+    try:
+        return os.path.isfile(path) and os.path.isfile(other) and os.path.samefile(path, other)
+    except (OSError, ValueError):
+        return False
+
+
 def check_figure_path(path: str, option: str = "-o") -> Path:
     """:func:`check_output_file` for a figure: .png, .svg or .pdf."""
     return check_output_file(path, option, FIGURE_SUFFIXES)

@@ -65,7 +65,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        status = _run(args)
+        status = _run(parser, args)
     except (ModelError, UsageError) as exc:
         print(f"powergraph: error: {exc}", file=sys.stderr)
         status = 2
@@ -90,11 +90,14 @@ def main(argv: list[str] | None = None) -> int:
     return status
 
 
-def _run(args: argparse.Namespace) -> int:
-    """Run the command with the model size limit set and numpy warnings turned into errors."""
-    from powergraph.cli.common import glyph_notices
+def _run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+    """Run the command with the model size limit set and numpy warnings turned into errors,
+    once no output would overwrite one of its inputs."""
+    from powergraph.cli.common import glyph_notices, refuse_overwriting_inputs
     from powergraph.model.yaml_loader import size_limit
 
+    commands = next(a for a in parser._actions if a.dest == "command")
+    refuse_overwriting_inputs(commands.choices[args.command], args)
     limit = None if args.max_model_size is None else parse_size(args.max_model_size)
     with size_limit(limit), warnings.catch_warnings(), glyph_notices():
         warnings.simplefilter("error", RuntimeWarning)

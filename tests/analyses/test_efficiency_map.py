@@ -147,6 +147,51 @@ def test_speed_dependent_drag_lowers_the_efficiency_with_speed() -> None:
     assert np.all(np.diff(emap.efficiency, axis=0) < 0)
 
 
+def test_loss_map_is_the_hand_derived_input_torque_and_torque_loss(tmp_path) -> None:
+    # Drag a + b·|n| on gear 1 (ratio 2, η 0.98): T_in = T/(2η) + a + b·n; the output
+    # takes T·ω/2, so the torque loss referred to the input is T_in − T/2.
+    model = model_from_dict(_pair_with_shaft_bearing({"drag": {"a": 0.1, "b": 0.001}}))
+    emap = efficiency_map(model, [10.0, 100.0], [500.0, 2000.0])
+    rows = emap.loss_map()
+    expected = [(rpm, t / (2 * 0.98) + 0.1 + 0.001 * rpm) for rpm in (500.0, 2000.0)
+                for t in (10.0, 100.0)]
+    torques = [10.0, 100.0] * 2
+    assert rows["speed_rpm"].tolist() == [rpm for rpm, _ in expected]
+    assert np.allclose(rows["input_torque"], [t_in for _, t_in in expected], rtol=1e-10)
+    assert np.allclose(rows["torque_loss"],
+                       [t_in - t / 2 for (_, t_in), t in zip(expected, torques)], rtol=1e-9)
+    # The command writes the same rows under VECTO's header.
+    path = tmp_path / "pair.yaml"
+    path.write_text(json.dumps(_pair_with_shaft_bearing({"drag": {"a": 0.1, "b": 0.001}})))
+    target = tmp_path / "pair.vtlm"
+    assert main(["map", str(path), "--torque", "10:100:2", "--speed", "500:2000:2",
+                 "--loss-map", str(target)]) == 0
+    lines = target.read_text().splitlines()
+    assert lines[0] == "Input Speed [rpm],Input Torque [Nm],Torque Loss [Nm]"
+    written = np.array([[float(x) for x in line.split(",")] for line in lines[1:]])
+    assert np.allclose(written[:, 1], rows["input_torque"], rtol=1e-9)
+    assert np.allclose(written[:, 2], rows["torque_loss"], rtol=1e-9)
+
+
+def test_loss_map_of_the_friction_rv_balances_each_single_solve() -> None:
+    # Input torque minus torque loss, times the input speed, is the power the output
+    # takes in a single solve at that point (power in = power out + losses).
+    from powergraph.analyses.efficiency_grid import at_point
+    from powergraph.testing import assert_conservation
+
+    model = pg.load_model("models/rv40e.yaml")
+    emap = efficiency_map(model, [120.0, 380.0], [700.0, 1800.0])
+    rows = emap.loss_map()
+    sense = np.sign(pg.solve(model).ratio)
+    for rpm, t_in, t_loss, torque in zip(rows["speed_rpm"], rows["input_torque"],
+                                         rows["torque_loss"], [120.0, 380.0] * 2):
+        result = pg.solve(at_point(model, rpm * math.pi / 30, torque, sense))
+        assert_conservation(result)
+        omega = rpm * math.pi / 30
+        assert (t_in - t_loss) * omega == pytest.approx(result.output_power, rel=1e-8)
+        assert t_loss * omega == pytest.approx(result.total_loss, rel=1e-8)
+
+
 def test_rows_whose_ends_differ_are_solved_point_by_point(monkeypatch) -> None:
     import powergraph.analyses.efficiency_map as module
 

@@ -12,6 +12,7 @@ import json
 import io
 import os
 import warnings
+import shutil
 from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
@@ -37,6 +38,7 @@ WRITERS = [
     (["sweep", "{missing}", "--set", "links.*.efficiency=0.9"], "--plot", "figure"),
     (["tolerance", "{missing}"], "-o", "figure"),
     (["map", "{missing}", "--torque", "100", "--speed", "1000"], "-o", "figure"),
+    (["map", "{missing}", "--torque", "100", "--speed", "1000"], "--loss-map", "file"),
     (["enumerate", "--links", "x"], "-o", "folder"),
     (["synthesize", "--ratio", "x"], "-o", "folder"),
     (["modes", "{missing}"], "-o", "figure"),
@@ -111,6 +113,28 @@ def test_bad_output_path_exits_2_before_any_work(argv, option, kind, case, tmp_p
     line = assert_names_option(*run(*full), option=f"{option}:")
     assert words in line
     assert sorted(tmp_path.rglob("*")) == before   # nothing written, no temporary left
+
+
+@pytest.mark.parametrize("argv, option", [
+    pytest.param(argv, option, id=f"{argv[0]} {option}")
+    for argv, option, kind in WRITERS if "{missing}" in argv and kind != "folder"])
+def test_an_output_naming_the_model_file_is_refused(argv, option, tmp_path) -> None:
+    # `sweep model.yaml -o model.yaml` once replaced the user's model with a CSV.
+    model = tmp_path / "model.yaml"
+    shutil.copy(ROOT / "models" / "rv40e.yaml", model)
+    text = model.read_text()
+    full = [a.format(missing=str(model)) for a in argv] + [option, str(model)]
+    line = assert_names_option(*run(*full), option=f"{option}:")
+    assert "overwrite the input" in line
+    assert model.read_text() == text and sorted(tmp_path.iterdir()) == [model]
+
+
+def test_a_cycle_output_naming_its_points_file_is_refused(tmp_path) -> None:
+    points = tmp_path / "points.csv"
+    points.write_text("x")
+    line = assert_names_option(*run("cycle", str(ROOT / "models" / "rv40e.yaml"), "--points",
+                                    str(points), "-o", str(points)), option="-o:")
+    assert "overwrite the input" in line and points.read_text() == "x"
 
 
 def test_output_file_name_too_long_for_the_folder(tmp_path) -> None:
