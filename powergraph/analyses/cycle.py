@@ -49,13 +49,16 @@ class CycleRow:
     #: a bus (docs/hybrid.md); None otherwise.
     electrical_share: float | None = None
     negative_split: bool | None = None
+    #: Codes of the row's own warnings (``outside-map``, ``role-reversed``...: the
+    #: solve's, not the model file's), each a reason to doubt that row's numbers.
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {"row": self.index, "duration": self.duration, "mode": self.mode,
                 "power_in": self.power_in, "power_out": self.power_out, "loss": self.loss,
                 "efficiency": self.efficiency, "verdict": self.verdict,
                 "losses": dict(self.losses), "electrical_share": self.electrical_share,
-                "negative_split": self.negative_split}
+                "negative_split": self.negative_split, "warnings": list(self.warnings)}
 
 
 @dataclass(frozen=True)
@@ -103,6 +106,15 @@ class CycleResult:
         return float(sum(r.duration for r in self.rows if r.negative_split))
 
     @property
+    def warned_rows(self) -> dict[str, list[int]]:
+        """``{warning code: row indices}`` of the rows whose solve warned."""
+        out: dict[str, list[int]] = {}
+        for r in self.rows:
+            for code in r.warnings:
+                out.setdefault(code, []).append(r.index)
+        return out
+
+    @property
     def locked_rows(self) -> list[int]:
         return [r.index for r in self.rows if r.verdict in ("locked", "self-locking")]
 
@@ -112,7 +124,7 @@ class CycleResult:
                 "energy_lost": self.energy_lost,
                 "total_energy_lost": float(sum(self.energy_lost.values())),
                 "efficiency": self.efficiency, "time_per_mode": self.time_per_mode,
-                "locked_rows": self.locked_rows,
+                "locked_rows": self.locked_rows, "warned_rows": self.warned_rows,
                 "negative_split_time": self.negative_split_time}
 
     def text_report(self) -> str:
@@ -167,6 +179,7 @@ def _sweep_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
     status = [STATUS[s] for s in np.asarray(result.status).tolist()]
     locking = np.asarray(result.self_locking).tolist()
     durations = np.asarray(points.durations, dtype=float).tolist()
+    reversed_ = _reversed_roles(p_in, p_out).tolist()
     rows = []
     for i in range(len(points)):
         verdict = ("locked" if status[i] == "locked" else
@@ -178,8 +191,20 @@ def _sweep_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
             index=i, duration=durations[i], mode=None, power_in=entering[i],
             power_out=leaving[i], loss=total[i],
             efficiency=eff if math.isfinite(eff) else None, verdict=verdict,
-            losses={label: values[i] for label, values in losses.items()}))
+            losses={label: values[i] for label, values in losses.items()},
+            warnings=("role-reversed",) if reversed_[i] and verdict == "ok" else ()))
     return tuple(rows)
+
+
+def _reversed_roles(p_in: np.ndarray, p_out: np.ndarray) -> np.ndarray:
+    """Rows whose inputs give power out or whose outputs take power in (powers into the
+    train), beyond round-off: the single solve's ``role-reversed`` warning, read from the
+    sums over the input and the output ports (the ports themselves for a train with one
+    of each)."""
+    from powergraph.statics.ports import WARN_FRACTION
+
+    entering = np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)
+    return (p_in < -WARN_FRACTION * entering) | (p_out > WARN_FRACTION * entering)
 
 
 def _finite(values) -> np.ndarray:
@@ -230,8 +255,15 @@ def _single_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
             loss=result.total_loss, efficiency=result.efficiency, verdict=verdict,
             losses=solve_losses(result),
             electrical_share=electrical_share(result) if result.machines else None,
-            negative_split=negative_split(result) if result.machines else None))
+            negative_split=negative_split(result) if result.machines else None,
+            warnings=_own_warnings(result)))
     return tuple(rows)
+
+
+def _own_warnings(result) -> tuple[str, ...]:
+    """The codes of a row's warnings that the model file does not have by itself."""
+    given = {id(w) for w in result.model.warnings}
+    return tuple(dict.fromkeys(w.code for w in result.warnings if id(w) not in given))
 
 
 def element_label(model: Model, link: int) -> str:

@@ -13,7 +13,7 @@ if TYPE_CHECKING:   # pragma: no cover
 #: CSV columns of the per-row results, with their units.
 COLUMNS = (("row", None), ("duration", "s"), ("mode", None), ("power_in", "W"),
            ("power_out", "W"), ("loss", "W"), ("efficiency", "-"), ("verdict", None),
-           ("electrical_share", "-"), ("negative_split", None))
+           ("electrical_share", "-"), ("negative_split", None), ("warnings", None))
 
 
 def text_report(result: "CycleResult") -> str:
@@ -34,6 +34,10 @@ def text_report(result: "CycleResult") -> str:
     if result.locked_rows:
         lines.append(f"rows that lock      {', '.join(str(i + 2) for i in result.locked_rows)}"
                      " (file lines)")
+    for code, rows in result.warned_rows.items():
+        shown = ", ".join(str(i + 2) for i in rows[:12]) + (", …" if len(rows) > 12 else "")
+        lines.append(f"warning: {code} in {len(rows)} row(s), file lines {shown} "
+                     "(solve one for the details)")
     errors = [r for r in result.rows if r.verdict.startswith("error")]
     lines += [f"warning: row {r.index + 2}: {r.verdict[7:]}" for r in errors]
     modes = result.time_per_mode
@@ -60,7 +64,8 @@ def to_csv(result: "CycleResult", path: Any = None) -> str | None:
                          repr(r.power_out), repr(r.loss),
                          "" if r.efficiency is None else repr(r.efficiency), r.verdict,
                          "" if r.electrical_share is None else repr(r.electrical_share),
-                         "" if r.negative_split is None else str(r.negative_split).lower()])
+                         "" if r.negative_split is None else str(r.negative_split).lower(),
+                         ";".join(r.warnings)])
     if path is None:
         return out.getvalue()
     with open(path, "w", encoding="utf-8", newline="") as f:

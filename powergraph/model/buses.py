@@ -15,6 +15,7 @@ Examples
 """
 from __future__ import annotations
 
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -25,9 +26,11 @@ from powergraph.model.units import parse_quantity
 _FREE = (None, "free")
 
 
-def machine_fields(item: Mapping[str, Any], path: str) -> dict[str, Any]:
-    """``{efficiency, bus}`` of a port: a machine needs a bus (efficiency default 1);
-    an input or output takes neither."""
+def machine_fields(item: Mapping[str, Any], path: str,
+                   folder: Path | None = None) -> dict[str, Any]:
+    """``{efficiency, bus}`` of a port: a machine needs a bus (efficiency default 1, or
+    ``{map: FILE.csv}`` read relative to ``folder``, the model file's folder); an input or
+    output takes neither."""
     if item.get("role") != "machine":
         for key in ("efficiency", "bus"):
             if key in item:
@@ -37,7 +40,15 @@ def machine_fields(item: Mapping[str, Any], path: str) -> dict[str, Any]:
     if item.get("bus") is None:
         raise ModelError("a machine needs the bus it is on (bus: NAME, a key of buses)",
                          f"{path}.bus")
-    return {"efficiency": float(item.get("efficiency", 1.0)), "bus": str(item["bus"])}
+    efficiency = item.get("efficiency", 1.0)
+    if isinstance(efficiency, Mapping):
+        from powergraph.model.efficiency_table import read_efficiency_table
+
+        efficiency = read_efficiency_table(str(efficiency["map"]), folder,
+                                           f"{path}.efficiency.map")
+    else:
+        efficiency = float(efficiency)
+    return {"efficiency": efficiency, "bus": str(item["bus"])}
 
 
 def buses_of(raw: Mapping | None, ports: tuple[Port, ...]) -> Mapping[str, Bus]:

@@ -177,10 +177,18 @@ _PORT = {
         "torque": _quantity("torque", "torque", "External torque on the component.",
                             minimum=-MAX_TORQUE, maximum=MAX_TORQUE),
         "name": _text("name", "A label for reports."),
-        "efficiency": {**_EFFICIENCY, "default": 1, "title": "efficiency",
+        "efficiency": {"title": "efficiency", "default": 1,
                        "description": "A machine's efficiency in (0, 1]: electrical power "
                                       "P/efficiency when motoring, P*efficiency when "
-                                      "generating."},
+                                      "generating; or {map: FILE.csv}, a table over speed "
+                                      "and torque (docs/hybrid.md).",
+                       "anyOf": [_EFFICIENCY, {
+                           "type": "object", "title": "efficiency map",
+                           "properties": {"map": {
+                               "type": "string", "minLength": 1, "title": "map",
+                               "description": "CSV file (relative to the model file): "
+                                              "speed [rpm], torque [N·m], efficiency."}},
+                           "required": ["map"], "additionalProperties": False}]},
         "bus": {"type": ["string", "number"], "title": "bus",
                 "description": "A machine's electrical bus (a key of buses)."},
     },

@@ -11,7 +11,10 @@ import dataclasses
 from dataclasses import dataclass, field
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
+
+if TYPE_CHECKING:  # pragma: no cover
+    from powergraph.model.efficiency_table import EfficiencyTable
 
 LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
 #: Link types that are shift elements (docs/modes.md): resolved to ``fixed`` (engaged) or
@@ -106,8 +109,9 @@ class Port:
     power: float | None = None
     torque: float | None = None
     name: str | None = None
-    #: A machine's efficiency and bus (``role: machine``, docs/hybrid.md); else None.
-    efficiency: float | None = None
+    #: A machine's efficiency (a number, or an EfficiencyTable over speed and torque) and
+    #: bus (``role: machine``, docs/hybrid.md); else None.
+    efficiency: float | EfficiencyTable | None = None
     bus: str | None = None
 
     @property

@@ -10,6 +10,7 @@ Everything here is linear in the size of the model. The format: docs/format.md.
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -67,7 +68,7 @@ def _model(data: Any, source: str | None) -> Model:
                   for i, raw in enumerate(data["links"]))
     links, shift_elements, modes = _shift_elements(data, links, components, frame)
     caveats: list[Caveat] = []  # other checks append theirs
-    ports = _ports(data["ports"], components, caveats)
+    ports = _ports(data["ports"], components, caveats, _folder(source))
     from powergraph.model.graph import bodies_of, check_topology
 
     bodies, body_of = bodies_of(components, links)
@@ -232,8 +233,16 @@ def _mesh_fields(raw: Mapping, path: str, pair: tuple[str, str],
             "efficiency": eta, "blocks": MappingProxyType(blocks)}
 
 
+def _folder(source: str | None) -> Path | None:
+    """The folder of the model file, where files it names are read; None (the working
+    folder) for a model that is no file."""
+    if not source or source.startswith("<"):
+        return None
+    return Path(source).parent
+
+
 def _ports(raw: list, components: Mapping[str, Component],
-           caveats: list[Caveat]) -> tuple[Port, ...]:
+           caveats: list[Caveat], folder: Path | None = None) -> tuple[Port, ...]:
     ports = []
     seen: dict[str, int] = {}
     for index, item in enumerate(raw):
@@ -254,7 +263,7 @@ def _ports(raw: list, components: Mapping[str, Component],
             if caveat is not None:
                 caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
-                          name=_text(item.get("name")), **values, **machine_fields(item, path)))
+                          name=_text(item.get("name")), **values, **machine_fields(item, path, folder)))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):
         raise ModelError("a train needs at least one input and one output port", "ports")
     return tuple(ports)

@@ -23,9 +23,11 @@ from typing import Any, Callable, Mapping
 
 import numpy as np
 
-from powergraph.errors import StaticsError
+from powergraph.errors import Caveat, StaticsError
 from powergraph.kinematics import solve_speeds
+from powergraph.model.efficiency_table import EfficiencyTable
 from powergraph.model.spec import Model, Port
+from powergraph.units_si import rpm
 
 #: Newton iterations on the bus balances before giving up.
 MAX_STEPS = 40
@@ -43,11 +45,26 @@ def electrical_power(power: float, efficiency: float) -> float:
     return power / efficiency if power > 0 else power * efficiency
 
 
+def machine_efficiency(port: Port, speed: float, torque: float) -> tuple[float, bool]:
+    """A machine port's efficiency at ``speed`` (rad/s) and ``torque`` (N·m): its number,
+    or its map's value there; and whether the point lies on the map (always True for a
+    number).
+
+    >>> machine_efficiency(Port(0, "S", "machine", efficiency=0.9, bus="dc"), 10.0, 2.0)
+    (0.9, True)
+    """
+    if isinstance(port.efficiency, EfficiencyTable):
+        return port.efficiency.at(speed, torque)
+    return port.efficiency, True
+
+
 @dataclass(frozen=True)
 class MachineFlow:
     """One machine at the solved point: speed (rad/s), torque on the train (N·m),
     mechanical ``power`` into the train and ``electrical_power`` drawn from its bus (W,
-    both negative when it generates); ``loss = electrical_power - power >= 0``."""
+    both negative when it generates); ``loss = electrical_power - power >= 0``.
+    ``efficiency`` is the one at this point (from the map, for a machine with one);
+    ``on_map`` is False when the point lies outside the map (its edge value taken)."""
 
     name: str
     component: str
@@ -57,6 +74,7 @@ class MachineFlow:
     torque: float
     power: float
     electrical_power: float
+    on_map: bool = True
 
     @property
     def state(self) -> str:
@@ -182,8 +200,8 @@ def _drawn(result) -> dict[str, float]:
     for flow in result.ports:
         port = result.model.ports[flow.index]
         if port.is_machine:
-            out[port.bus] = out.get(port.bus, 0.0) + electrical_power(flow.power,
-                                                                        port.efficiency)
+            efficiency = machine_efficiency(port, flow.speed, flow.torque)[0]
+            out[port.bus] = out.get(port.bus, 0.0) + electrical_power(flow.power, efficiency)
     return out
 
 
@@ -230,14 +248,8 @@ def _slopes(base, balanced, unknowns, plain_solve, x, r, steps) -> np.ndarray:
 def _with_machines(model: Model, result):
     """The plain result re-attached to the model with buses, its machines and buses."""
     result = dataclasses.replace(result, model=model)
-    flows = result.ports
-    machines = tuple(
-        MachineFlow(name=machine_name(port, model), component=port.component, bus=port.bus,
-                    efficiency=port.efficiency, speed=flows[port.index].speed,
-                    torque=flows[port.index].torque, power=flows[port.index].power,
-                    electrical_power=electrical_power(flows[port.index].power,
-                                                      port.efficiency) + 0.0)
-        for port in model.machines)
+    machines = tuple(_machine_flow(model, port, result.ports[port.index])
+                     for port in model.machines)
     drawn = {}
     for m in machines:
         drawn[m.bus] = drawn.get(m.bus, 0.0) + m.electrical_power
@@ -248,3 +260,28 @@ def _with_machines(model: Model, result):
         for name, bus in model.buses.items()})
     return dataclasses.replace(result, machines=machines, buses=buses,
                                total_loss=result.total_loss + sum(m.loss for m in machines))
+
+
+def _machine_flow(model: Model, port: Port, flow) -> MachineFlow:
+    efficiency, on_map = machine_efficiency(port, flow.speed, flow.torque)
+    return MachineFlow(name=machine_name(port, model), component=port.component,
+                       bus=port.bus, efficiency=efficiency, speed=flow.speed,
+                       torque=flow.torque, power=flow.power,
+                       electrical_power=electrical_power(flow.power, efficiency) + 0.0,
+                       on_map=on_map)
+
+
+def machine_caveats(result) -> tuple[Caveat, ...]:
+    """A machine that runs outside its efficiency map (``outside-map``): the map's edge
+    value was taken, which the map does not vouch for."""
+    caveats = []
+    for machine, port in zip(result.machines, result.model.machines):
+        if not machine.on_map:
+            table = port.efficiency
+            caveats.append(Caveat(
+                f"{machine.name} runs at {abs(rpm(machine.speed)):.6g} rpm and "
+                f"{abs(machine.torque):.6g} N·m, outside its efficiency map {table.source!r} "
+                f"(up to {rpm(table.speeds[-1]):.6g} rpm and {table.torques[-1]:.6g} N·m); "
+                f"the map's edge value {machine.efficiency:.4g} was taken",
+                f"{port.path}.efficiency", "outside-map"))
+    return tuple(caveats)

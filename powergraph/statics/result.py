@@ -182,7 +182,12 @@ class PowerFlowResult:
     @cached_property
     def warnings(self) -> tuple[Caveat, ...]:
         """The model's caveats, then the result's own (ports whose power runs against
-        their declared role, an output torque that drives the train, no power passing)."""
+        their declared role, an output torque that drives the train, no power passing, a
+        machine outside its efficiency map)."""
+        if self.machines:
+            from powergraph.statics.machines import machine_caveats
+
+            return tuple(self.model.warnings) + result_caveats(self) + machine_caveats(self)
         return tuple(self.model.warnings) + result_caveats(self)
 
     @property

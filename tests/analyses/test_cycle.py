@@ -62,6 +62,13 @@ def test_a_plain_train_cycle_goes_through_the_sweep_and_sums_the_single_solves()
             ({0: {"speed": 1500 * RPM, "power": -1e3}}, 0.5)]
     _check(result, *_expected(pg.load_model(PLANETARY), rows))
     assert [r.verdict for r in result.rows] == ["ok", "ok", "ok"]
+    # The last row drives the train from its output: the single solve warns that both
+    # ports run against their roles, and so does the batched row.
+    single = pg.solve(pg.load_model(PLANETARY).with_port(0, power=None, torque=None)
+                      .with_port(0, speed=1500 * RPM, power=-1e3))
+    assert {w.code for w in single.warnings} == {"role-reversed"}
+    assert [r.warnings for r in result.rows] == [(), (), ("role-reversed",)]
+    assert result.warned_rows == {"role-reversed": [2]}
 
 
 def test_a_hybrid_cycle_solves_row_by_row_and_sums_the_single_solves():

@@ -1,0 +1,195 @@
+"""Machines whose efficiency is a map over speed and torque, derived by hand.
+
+The device: a single planetary power split (k = z_r/z_s = 78/30), engine on the carrier
+at 2000 rpm and 30 kW, MG1 on the sun, MG2 on the ring, the ring to the wheels through an
+ideal 40:40 pair, ideal meshes, a charge-sustaining bus. Both machines read one map whose
+grid (0, 2000, 4000 rpm × 0, 50, 100 N·m) samples
+
+    η(n, T) = 0.80 + 0.001·|T| + 0.03·|n|/4000,
+
+linear in each variable, so the bilinear interpolation between grid points is exact.
+
+Hand derivation (wheels at n_r rpm, the ring's speed):
+- Willis: n_s = (1 + k)·2000 − k·n_r; the ideal balance fixes the sun's torque
+  T_s = −T_c/(1 + k) whatever the machines' efficiencies, so MG1's point, P_1 = T_s·ω_s
+  and η_1 = η(n_s, T_s) are known first; MG1 generates: P_e1 = P_1·η_1.
+- The bus: P_e2 = −P_e1 > 0, MG2 motors. Its torque T = P_2/ω_r enters its own
+  efficiency: P_2 = P_e2·(a + b·P_2/ω_r) with a = 0.80 + 0.03·n_r/4000, b = 0.001, so
+  P_2 = a·P_e2 / (1 − b·P_e2/ω_r).
+- Ideal meshes: the wheels take P_engine + P_1 + P_2.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+
+from powergraph.cli.main import main
+from powergraph.errors import ModelError
+from powergraph.model import load_model, model_from_dict
+from powergraph.statics import solve
+from powergraph.testing import assert_conservation
+
+K = 78 / 30
+RPM = math.pi / 30
+
+
+def eta(n_rpm: float, torque: float) -> float:
+    return 0.80 + 0.001 * abs(torque) + 0.03 * abs(n_rpm) / 4000
+
+
+def write_map(folder, name: str = "mg.csv", law=eta) -> str:
+    rows = ["speed [rpm],torque [N·m],efficiency"]
+    rows += [f"{n},{t},{law(n, t)!r}" for n in (0, 2000, 4000) for t in (0, 50, 100)]
+    (folder / name).write_text("\n".join(rows) + "\n")
+    return name
+
+
+def device(wheel_rpm: float, efficiency) -> dict:
+    machine = lambda name, part: {"component": part, "role": "machine", "name": name,  # noqa: E731
+                                  "efficiency": efficiency, "bus": "dc"}
+    return {
+        "name": "power split with maps",
+        "components": {"frame": {"role": "frame"}, "S": {"teeth": 30},
+                       "P": {"teeth": 24, "count": 4}, "R": {"teeth": 78, "internal": True},
+                       "C": {}, "R2": {"teeth": 40}, "W": {"teeth": 40}},
+        "links": [{"type": "mesh", "between": ["S", "P"], "carrier": "C"},
+                  {"type": "mesh", "between": ["P", "R"], "carrier": "C"},
+                  {"type": "bearing", "between": ["P", "C"]},
+                  {"type": "fixed", "between": ["R", "R2"]},
+                  {"type": "mesh", "between": ["R2", "W"]}],
+        "ports": [{"component": "C", "role": "input", "name": "engine", "speed": "2000 rpm",
+                   "power": "30 kW"},
+                  machine("MG1", "S"), machine("MG2", "R"),
+                  {"component": "W", "role": "output", "name": "wheels",
+                   "speed": f"{-wheel_rpm} rpm"}],
+        "buses": {"dc": {"battery": "0 W"}},
+    }
+
+
+def model_with_map(tmp_path, wheel_rpm: float, law=eta):
+    path = tmp_path / "split.yaml"
+    path.write_text(json.dumps(device(wheel_rpm, {"map": write_map(tmp_path, law=law)})))
+    return load_model(path)
+
+
+def by_hand(wheel_rpm: float) -> dict:
+    w_c, w_r = 2000 * RPM, wheel_rpm * RPM
+    n_s = (1 + K) * 2000 - K * wheel_rpm
+    t_s = -(30e3 / w_c) / (1 + K)
+    p_1 = t_s * n_s * RPM
+    eta_1 = eta(n_s, t_s)
+    p_e2 = -p_1 * eta_1
+    a, b = 0.80 + 0.03 * wheel_rpm / 4000, 0.001
+    p_2 = a * p_e2 / (1 - b * p_e2 / w_r)
+    return {"p_1": p_1, "eta_1": eta_1, "p_2": p_2, "eta_2": p_2 / p_e2,
+            "wheels": 30e3 + p_1 + p_2}
+
+
+def test_machines_on_a_map_match_the_hand_derivation(tmp_path) -> None:
+    result = solve(model_with_map(tmp_path, 1500.0))
+    assert_conservation(result)
+    expected = by_hand(1500.0)
+    mg1, mg2 = result.machines
+    assert mg1.power == pytest.approx(expected["p_1"], rel=1e-9)
+    assert mg1.efficiency == pytest.approx(expected["eta_1"], rel=1e-12)
+    assert mg1.state == "generating" and mg2.state == "motoring"
+    assert mg2.power == pytest.approx(expected["p_2"], rel=1e-9)
+    assert mg2.efficiency == pytest.approx(expected["eta_2"], rel=1e-9)
+    assert mg2.efficiency == pytest.approx(eta(1500.0, mg2.torque), rel=1e-12)
+    assert result.output_power == pytest.approx(expected["wheels"], rel=1e-9)
+    assert mg1.on_map and mg2.on_map
+    assert not [w for w in result.warnings if w.code == "outside-map"]
+
+
+def test_a_uniform_map_gives_the_constant_efficiency_answer(tmp_path) -> None:
+    mapped = solve(model_with_map(tmp_path, 1500.0, law=lambda n, t: 0.9))
+    constant = solve(model_from_dict(device(1500.0, 0.9)))
+    for a, b in zip(mapped.machines, constant.machines):
+        assert a.power == pytest.approx(b.power, rel=1e-12)
+        assert a.electrical_power == pytest.approx(b.electrical_power, rel=1e-12)
+    assert mapped.total_loss == pytest.approx(constant.total_loss, rel=1e-12)
+
+
+def test_a_point_beyond_the_map_takes_the_edge_and_warns(tmp_path) -> None:
+    # Wheels at 500 rpm: the sun turns at 3.6·2000 − 2.6·500 = 5900 rpm, beyond the map's
+    # 4000 rpm, so MG1 takes the 4000 rpm row's value at its torque.
+    result = solve(model_with_map(tmp_path, 500.0))
+    assert_conservation(result)
+    mg1 = result.machines[0]
+    assert abs(mg1.speed) / RPM == pytest.approx(5900.0, rel=1e-12)
+    assert not mg1.on_map
+    assert mg1.efficiency == pytest.approx(eta(4000.0, mg1.torque), rel=1e-12)
+    (warning,) = [w for w in result.warnings
+                  if w.code == "outside-map" and w.path == "ports[1].efficiency"]
+    assert "5900 rpm" in warning.message and "mg.csv" in warning.message
+
+
+BAD_MAPS = [
+    ("speed [rpm],torque,efficiency\n0,0,0.9\n", "expected the columns"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,0.9\n0,10,0.9\n1000,0,0.9\n",
+     "1 point(s) of the grid"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,0.9\n0,0,0.8\n", "given twice"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,1.2\n", "must be in (0, 1]"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,0\n", "must be in (0, 1]"),
+    ("speed [rpm],torque [N·m],efficiency\n-10,0,0.9\n", "magnitudes"),
+    ("speed [rpm],torque [N·m],efficiency\n0,abc,0.9\n", "not a finite number"),
+    ("speed [rpm],torque [N·m],efficiency\n0,nan,0.9\n", "not a finite number"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,0.9,1\n", "expected 3 values"),
+    ("speed [rpm],torque [N·m],efficiency\n0,0,0.9\n0,10,0.9\n", "two speeds"),
+    ("", "empty"),
+]
+
+
+@pytest.mark.parametrize("text, words", BAD_MAPS)
+def test_a_bad_map_is_refused_naming_the_port_and_the_line(tmp_path, text, words) -> None:
+    (tmp_path / "mg.csv").write_text(text)
+    path = tmp_path / "split.yaml"
+    path.write_text(json.dumps(device(1500.0, {"map": "mg.csv"})))
+    with pytest.raises(ModelError, match="mg.csv") as info:
+        load_model(path)
+    assert info.value.path == "ports[1].efficiency.map" and words in info.value.message
+
+
+@pytest.mark.parametrize("efficiency, words", [
+    ({"map": "missing.csv"}, "cannot read the efficiency map"),
+    ({"map": "mg.csv", "table": 1}, "table"),
+    ({}, "map"),
+])
+def test_a_bad_map_reference_is_refused(tmp_path, efficiency, words) -> None:
+    write_map(tmp_path)
+    path = tmp_path / "split.yaml"
+    path.write_text(json.dumps(device(1500.0, efficiency)))
+    with pytest.raises(ModelError, match=words) as info:
+        load_model(path)
+    assert info.value.path.startswith("ports[1].efficiency")
+
+
+def test_the_map_is_read_beside_the_model_file_from_any_folder(tmp_path, monkeypatch,
+                                                                 capsys) -> None:
+    folder = tmp_path / "models"
+    folder.mkdir()
+    write_map(folder)
+    (folder / "split.yaml").write_text(json.dumps(device(1500.0, {"map": "mg.csv"})))
+    monkeypatch.chdir(tmp_path)
+    assert main(["solve", "models/split.yaml", "--json"]) == 0
+    machines = json.loads(capsys.readouterr().out)["machines"]
+    assert machines[0]["power"] == pytest.approx(by_hand(1500.0)["p_1"], rel=1e-9)
+    (folder / "mg.csv").write_text("speed [rpm],torque [N·m],efficiency\n0,0,2\n")
+    assert main(["solve", "models/split.yaml"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "ports[1].efficiency.map" in err[0]
+
+
+def test_a_cycle_names_the_rows_outside_a_machine_map(tmp_path) -> None:
+    import io
+
+    from powergraph.analyses.cycle import cycle
+
+    model = model_with_map(tmp_path, 1500.0)
+    points = "wheels.speed [rpm],duration [s]\n-1500,1\n-500,2\n-1400,1\n"
+    result = cycle(model, io.StringIO(points))
+    assert [r.warnings for r in result.rows] == [(), ("outside-map",), ()]
+    assert "warning: outside-map in 1 row(s), file lines 3" in result.text_report()
+    assert result.to_dict()["warned_rows"] == {"outside-map": [1]}
