@@ -45,8 +45,9 @@ WRITERS = [
     (["lever", "{missing}"], "-o", "figure"),
     (["cycle", "{missing}", "--points", "p.csv"], "-o", "file"),
     (["cycle", "{missing}", "--points", "p.csv"], "--plot", "figure"),
+    (["shifts", "{missing}", "--ratios", "2"], "-o", "model"),
 ]
-NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out"}
+NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out", "model": "x.yaml"}
 
 
 def run(*argv: str) -> tuple[int, str, str]:
