@@ -159,13 +159,17 @@ def place_shift_elements(model: Model, ratios: Sequence[float], tolerance: float
     if not targets or any(t == 0 for t in targets):
         raise UsageError("give at least one ratio, none of them 0")
     states = gear_states(model, output)
+    if not states:
+        raise UsageError("the gearset gives no ratio with one clutch and one brake or two "
+                         "clutches on its coaxial members (suns, rings, carriers)")
+    given = ", ".join(f"{r:.4g}" for r in sorted({round(s.ratio, 12) for s in states}))
     per_target = [sorted((s for s in states if abs(s.ratio - t) <= tolerance * abs(t)),
                          key=lambda s, t=t: abs(s.ratio - t)) for t in targets]
     for target, found in zip(targets, per_target):
         if not found:
             raise UsageError(f"no pair of shift elements gives ratio {target:g} within "
                              f"{tolerance:.3g} on this gearset; its gear states give "
-                             + ", ".join(f"{s.ratio:.4g}" for s in states))
+                             f"{given}")
     plans = _best_plans(targets, per_target, top)
     if not plans:
         raise UsageError("no plan: the targets cannot each have a gear state of their own "
