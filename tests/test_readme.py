@@ -70,3 +70,14 @@ def test_readme_output_is_the_commands_own(command: str, block: str, capsys,
         if line.strip() in ("", "...") or "..." in line:
             continue
         assert line.rstrip() in lines, f"{line!r} is not in the output of {command}"
+
+
+def test_the_readme_opens_with_the_two_set_up_lines_under_its_title() -> None:
+    # The two lines a new user runs first, and the two lines .ci/run runs.
+    lines = README.splitlines()
+    assert lines[:6] == ["# powergraph", "", "```",
+                         "pip install -e . && powergraph solve models/rv40e.yaml",
+                         'pip install -e ".[test]" && pytest', "```"]
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "pip install --quiet -e . && powergraph solve models/rv40e.yaml" in ci
+    assert "pip install --quiet -e \".[test]\" && pytest" in ci
