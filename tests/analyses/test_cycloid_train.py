@@ -89,3 +89,17 @@ def test_impossible_stage_is_a_model_error_with_its_place() -> None:
     with pytest.raises(ModelError) as info:
         train_fluctuation(model)
     assert info.value.path == "links[1].cycloid"
+
+
+def test_an_output_that_does_not_turn_is_a_model_error_not_a_division() -> None:
+    # Found by the hostile-input benchmark: a merge key copied the cycloid mesh over the
+    # first stage's, so both meshes join 4 and 5 (carriers 3 and 7), the planet gear no
+    # longer turns and the output stands still (ratio infinite). `tolerance` ended in
+    # "numerical problem (divide by zero)", exit 1.
+    data = yaml.safe_load((MODELS / "rv40e_wang2021.yaml").read_text())
+    cycloid = {**data["links"][1], "cycloid": RV_STAGE}
+    data["links"][:2] = [cycloid, {**cycloid, "carrier": 7}]
+    model = model_from_dict(data)
+    with pytest.raises(ModelError, match="does not turn") as info:
+        train_fluctuation(model)
+    assert info.value.path == "ports"

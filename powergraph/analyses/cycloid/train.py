@@ -174,6 +174,10 @@ def train_fluctuation(model, speeds=None) -> TrainFluctuation:
     if nominal.input_component is None or nominal.output_component is None:
         raise ModelError("the cycloid fluctuation at the output needs exactly one input "
                          "and one output port", "ports")
+    if not math.isfinite(nominal.ratio) or nominal.ratio == 0:
+        raise ModelError("the output does not turn (or the input stands still): the "
+                         "train's ratio is not finite, so its fluctuation at the output is "
+                         "not defined", "ports")
     stages = tuple(_stage_at_output(model, link, nominal)
                    for link in model.meshes if "cycloid" in link.blocks)
     return TrainFluctuation(nominal.input_component, nominal.output_component,
@@ -195,8 +199,15 @@ def _stage_at_output(model, link, nominal) -> StageAtOutput:
 
     def train_ratio(stage_ratio):
         eps = 1.0 / block.teeth - 1.0 / np.asarray(stage_ratio)
-        s = k * eps * u0 / (1.0 - k * eps * h)
-        return (in0 + g_in * s) / (out0 + g_out * s)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = k * eps * u0 / (1.0 - k * eps * h)
+            ratio = (in0 + g_in * s) / (out0 + g_out * s)
+        if not np.all(np.isfinite(ratio)):
+            raise ModelError("within the stage's ratio fluctuation the output (or the "
+                             "stage's own crank) stands still: the train's ratio is not "
+                             "defined there, so neither is its fluctuation at the output",
+                             f"{link.path}.cycloid")
+        return ratio
 
     turns = u0 / in0
     count = max(360, SAMPLES_PER_PERIOD * math.ceil(abs(turns) * stage.geometry.pins))
