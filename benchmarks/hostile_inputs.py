@@ -58,8 +58,11 @@ MODEL_COMMANDS = {
     "sweep": ["sweep", "{m}", "--quiet", "--set", "links.*.efficiency=0.9:1:3"],
     "tolerance": ["tolerance", "{m}", "--samples", "64", "--sobol-samples", "0", "--seed", "1",
                   "--json"],
-    "map": ["map", "{m}", "--torque", "100:200:2", "--speed", "1000:2000:2", "--json"],
+    "map": ["map", "{m}", "--torque", "100:200:2", "--speed", "1000:2000:2", "--json",
+            "--loss-map", "{out}/loss.vtlm"],
     "modes": ["modes", "{m}", "--json"], "lever": ["lever", "{m}", "--json"],
+    "shifts": ["shifts", "{m}", "--ratios", "2.5,1,-2", "--tolerance", "50%", "--json",
+               "-o", "{out}/placed.yaml"],
     "cycle": ["cycle", "{m}", "--points", "{out}/points.csv", "--json"],
 }
 #: The operating points given to ``cycle``: component 1's speed (most models have one).

@@ -25,6 +25,7 @@ from powergraph.errors import PowerGraphError, UsageError
 
 ROOT = Path(__file__).resolve().parents[2]
 RV = str(ROOT / "models" / "rv40e.yaml")
+GEARSET = str(ROOT / "models" / "gearsets" / "simpson.yaml")
 
 #: Every option that writes: (argv before it, option, kind). A missing model file, or a bad
 #: number after the output option, shows that the output is checked before anything else.
@@ -247,6 +248,10 @@ NUMERIC_OPTIONS = [
     (["synthesize", "--ratio", "5", "--mesh-efficiency={v}", *SMALL], "--mesh-efficiency"),
     (["synthesize", "--ratio", "5", "--top={v}", *SMALL], "--top"),
     (["synthesize", "--ratio", "5", "--max-grid={v}", *SMALL], "--max-grid"),
+    (["shifts", GEARSET, "--ratios={v}"], "--ratios"),
+    (["shifts", GEARSET, "--ratios", "2.5,{v}"], "--ratios"),
+    (["shifts", GEARSET, "--ratios", "2.5", "--tolerance={v}"], "--tolerance"),
+    (["shifts", GEARSET, "--ratios", "2.5", "--top={v}"], "--top"),
 ]
 QUICK_VALUES = ["-inf", "5e-324", "١٢"]
 
