@@ -151,7 +151,8 @@ def check_file(task: tuple) -> list[tuple]:
                             " ".join(full)[:200]))
             argv, option, what = rng.choice(WRITERS)
             bad = rng.choice([f"{out}/missing/dir/x", out])
-            bad += {"figure": ".png", "file": ".csv", "folder": ""}[what] if bad != out else ""
+            bad += {"figure": ".png", "file": ".csv", "model": ".yaml",
+                    "folder": ""}[what] if bad != out else ""
             if what == "folder" and bad == out:
                 Path(out, "afile").write_text("x")
                 bad = f"{out}/afile"
