@@ -265,7 +265,8 @@ def main_benchmark() -> None:
     parser.add_argument("--classes", help="comma-separated mutation classes (default all)")
     args = parser.parse_args()
     os.environ.setdefault("MPLBACKEND", "Agg")
-    models = {m.name: m.read_text() for m in sorted((ROOT / "models").glob("*.yaml"))}
+    files = sorted((ROOT / "models").glob("*.yaml")) + sorted((ROOT / "models").glob("*/*.yaml"))
+    models = {m.name: m.read_text() for m in files}
     start = time.perf_counter()
     plain = plain_answers(models)   # also the one-time imports, before the workers fork
     with tempfile.TemporaryDirectory() as tmp:
