@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 from powergraph.cli.cmd_synthesize import parse_tolerance
 from powergraph.cli.common import (check_output_file, load, number_option, print_json,
@@ -77,6 +78,6 @@ def run(args: argparse.Namespace) -> int:
         print(table.text_report())
     if target is not None:
         text = yaml.safe_dump(document, sort_keys=False, allow_unicode=True)
-        write_atomically(target, lambda tmp: open(tmp, "w", encoding="utf-8").write(text))
+        write_atomically(target, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
         say_wrote(target, data_on_stdout=args.json)
     return 0

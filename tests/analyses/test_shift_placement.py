@@ -85,6 +85,7 @@ def test_other_trains_are_refused(path, words) -> None:
         place_shift_elements(load_model(path), [2.0])
 
 
+@pytest.mark.filterwarnings("error")        # an unclosed file once warned here
 def test_the_command_writes_a_model_that_modes_accepts(tmp_path, capsys) -> None:
     out = tmp_path / "placed.yaml"
     assert main(["shifts", str(GEARSET), "--ratios", "2.3333333333333,1.3333333333333,1,-3",
