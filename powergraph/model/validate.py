@@ -263,7 +263,8 @@ def _ports(raw: list, components: Mapping[str, Component],
             if caveat is not None:
                 caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
-                          name=_text(item.get("name")), **values, **machine_fields(item, path, folder)))
+                          name=_text(item.get("name")), **values,
+                          **machine_fields(item, path, folder)))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):
         raise ModelError("a train needs at least one input and one output port", "ports")
     return tuple(ports)

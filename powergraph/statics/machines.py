@@ -89,7 +89,7 @@ class MachineFlow:
         return {"name": self.name, "component": raw(self.component), "bus": self.bus,
                 "speed": self.speed, "torque": self.torque, "power": self.power,
                 "electrical_power": self.electrical_power, "state": self.state,
-                "loss": self.loss}
+                "loss": self.loss, "efficiency": self.efficiency}
 
 
 @dataclass(frozen=True)

@@ -176,6 +176,7 @@ def test_the_map_is_read_beside_the_model_file_from_any_folder(tmp_path, monkeyp
     assert main(["solve", "models/split.yaml", "--json"]) == 0
     machines = json.loads(capsys.readouterr().out)["machines"]
     assert machines[0]["power"] == pytest.approx(by_hand(1500.0)["p_1"], rel=1e-9)
+    assert machines[0]["efficiency"] == pytest.approx(by_hand(1500.0)["eta_1"], rel=1e-12)
     (folder / "mg.csv").write_text("speed [rpm],torque [N·m],efficiency\n0,0,2\n")
     assert main(["solve", "models/split.yaml"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
