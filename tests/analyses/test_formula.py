@@ -402,3 +402,18 @@ def test_stencil_is_element_stencil_exact() -> None:
     # the same numbers as the float stencil
     assert [float(c.subs({i: -2.5, f: 0.98})) for c in stencil(i, f)] == pytest.approx(
         element_stencil(-2.5, 0.98), rel=1e-15)
+
+
+def test_conditions_are_plain_json_even_when_the_sign_comes_from_sympy() -> None:
+    # Found by the hostile-input benchmark: a merge key turned the closed differential's
+    # link 3 into a mesh s-g1 on the carrier; `formula --json` ended in "Object of type
+    # BooleanTrue is not JSON serializable" (a condition's sign was a sympy Integer).
+    import json
+
+    from powergraph.model.yaml_loader import load_yaml_file
+
+    data = load_yaml_file(MODELS / "closed_differential.yaml")
+    data["links"][3] = {"type": "mesh", "between": ["s", "g1"], "carrier": "c"}
+    data = json.loads(json.dumps(derive_formulas(model_from_dict(data)).to_dict()))
+    assert all(type(c["always"]) is bool for c in data["conditions"])
+    assert any(c["always"] for c in data["conditions"])

@@ -163,4 +163,4 @@ def sign_factors(expr: sp.Expr, positive: Iterable[sp.Symbol], values: Values | 
                 if values and _value(factor, values) < 0:
                     factor, sign = -factor, sign * (-1) ** power
                 kept.append(factor)
-    return sign, kept
+    return int(sign), kept

@@ -69,8 +69,9 @@ class Condition:
     @property
     def always(self) -> bool:
         """True when it holds for every positive teeth and efficiencies."""
-        return not self.factors and (self.relation == "!=" or
-                                     (self.relation == ">" and self.sign > 0))
+        # a plain bool (the sign may come from sympy, whose comparisons give BooleanTrue)
+        return bool(not self.factors and (self.relation == "!=" or
+                                          (self.relation == ">" and int(self.sign) > 0)))
 
     @property
     def reduced(self) -> tuple[sp.Expr, str]:
