@@ -308,6 +308,23 @@ def _join(data: dict, chain: list[Stage]) -> None:
             data["links"].append(_fixed(chain[j - 1].out, stage.inp))
 
 
+def with_ids(data: dict, new: dict) -> dict:
+    """Model data with the components ``new`` maps (old id -> new id) renamed wherever
+    they are named, the others kept; the file order is kept, so link and port indices too.
+
+    >>> with_ids({"components": {1: {}, 2: {}}, "links": [{"between": [1, 2]}],
+    ...           "ports": [{"component": 2}]}, {2: "out"})["links"]
+    [{'between': [1, 'out']}]
+    """
+    get = lambda c: new.get(c, c)  # noqa: E731
+    links = [dict(link, between=[get(b) for b in link["between"]],
+                  **({"carrier": get(link["carrier"])} if "carrier" in link else {}))
+             for link in data["links"]]
+    ports = [dict(port, component=get(port["component"])) for port in data["ports"]]
+    return dict(data, components={get(c): v for c, v in data["components"].items()},
+                links=links, ports=ports)
+
+
 def renamed(data: dict, seed: Any) -> tuple[dict, dict[str, str]]:
     """The same train with every component renamed and components, links and ports
     shuffled: ``(data, {old id: new id})``."""
@@ -315,16 +332,13 @@ def renamed(data: dict, seed: Any) -> tuple[dict, dict[str, str]]:
     ids = list(data["components"])
     fresh = [f"x{n}" for n in rng.sample(range(10 * len(ids)), len(ids))]
     new = dict(zip(ids, fresh))
-    comps = list(data["components"].items())
+    out = with_ids(data, new)
+    comps = list(out["components"].items())
     rng.shuffle(comps)
-    links = [dict(link, between=[new[b] for b in link["between"]],
-                  **({"carrier": new[link["carrier"]]} if "carrier" in link else {}))
-             for link in data["links"]]
+    links, ports = list(out["links"]), list(out["ports"])
     rng.shuffle(links)
-    ports = [dict(port, component=new[port["component"]]) for port in data["ports"]]
     rng.shuffle(ports)
-    out = dict(data, components={new[c]: v for c, v in comps}, links=links, ports=ports)
-    return out, new
+    return dict(out, components=dict(comps), links=links, ports=ports), new
 
 
 def train_strategy(**kwargs: Any):

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from powergraph.cli.main import main
+from powergraph.testing_trains import with_ids
 
 ROOT = Path(__file__).resolve().parents[2]
 RV = str(ROOT / "models" / "rv40e_wang2021.yaml")
@@ -136,14 +137,7 @@ def renamed_planetary(tmp_path, new: dict[str, str]) -> str:
     import yaml
 
     text = PLANETARY.read_text()
-    data = yaml.safe_load(text)
-    get = lambda c: new.get(c, c)  # noqa: E731
-    data["components"] = {get(c): v for c, v in data["components"].items()}
-    for link in data["links"]:
-        link["between"] = [get(c) for c in link["between"]]
-        link.update({"carrier": get(link["carrier"])} if "carrier" in link else {})
-    for port in data["ports"]:
-        port["component"] = get(port["component"])
+    data = with_ids(yaml.safe_load(text), new)
     path = tmp_path / "renamed.yaml"
     path.write_text(yaml.safe_dump(data, allow_unicode=True), encoding="utf-8")
     return str(path)

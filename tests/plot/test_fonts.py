@@ -18,6 +18,7 @@ from powergraph.model import model_from_dict  # noqa: E402
 from powergraph.plot import fonts  # noqa: E402
 from powergraph.plot.power_flow import plot_power_flow  # noqa: E402
 from powergraph.testing import assert_conservation  # noqa: E402
+from powergraph.testing_trains import with_ids  # noqa: E402
 
 PLAIN = (Path(__file__).resolve().parents[2] / "models" / "planetary_2kh_sun_to_carrier.yaml")
 SCRIPTS = {"sun": "太阳轮", "planet": "遊星歯車", "ring": "１２", "carrier": "🚀 carrier"}
@@ -33,14 +34,7 @@ def solve(new: dict[str, str]):
     import powergraph as pg
 
     text = PLAIN.read_text()
-    data = yaml.safe_load(text)
-    get = lambda c: new.get(c, c)  # noqa: E731
-    data["components"] = {get(c): v for c, v in data["components"].items()}
-    for link in data["links"]:
-        link["between"] = [get(c) for c in link["between"]]
-        link.update({"carrier": get(link["carrier"])} if "carrier" in link else {})
-    for port in data["ports"]:
-        port["component"] = get(port["component"])
+    data = with_ids(yaml.safe_load(text), new)
     result = pg.solve(model_from_dict(data))
     assert_conservation(result)
     return result

@@ -21,6 +21,7 @@ from powergraph.model import model_from_dict
 from powergraph.statics.flow import (Flow, Node, body_node, circulating_power, element_nodes,
                                      split_powers)
 from powergraph.testing import assert_conservation
+from powergraph.testing_trains import with_ids
 
 ROOT = Path(__file__).resolve().parents[2]
 PLAIN = yaml.safe_load((ROOT / "models" / "planetary_2kh_sun_to_carrier.yaml").read_text())
@@ -44,16 +45,7 @@ RENAMINGS = {
 
 def rename(data: dict, new: dict[str, str]) -> dict:
     """The model data with components renamed (file order kept, so link indices too)."""
-    data = copy.deepcopy(data)
-    get = lambda c: new.get(c, c)  # noqa: E731
-    data["components"] = {get(c): v for c, v in data["components"].items()}
-    for link in data["links"]:
-        link["between"] = [get(c) for c in link["between"]]
-        if "carrier" in link:
-            link["carrier"] = get(link["carrier"])
-    for port in data["ports"]:
-        port["component"] = get(port["component"])
-    return data
+    return with_ids(copy.deepcopy(data), new)
 
 
 def solve(data: dict):
