@@ -262,8 +262,8 @@ def _single_rows(model: Model, points: Points) -> tuple[CycleRow, ...]:
 
 def _own_warnings(result) -> tuple[str, ...]:
     """The codes of a row's warnings that the model file does not have by itself."""
-    given = {id(w) for w in result.model.warnings}
-    return tuple(dict.fromkeys(w.code for w in result.warnings if id(w) not in given))
+    own = result.warnings[len(result.model.warnings):]   # the model's come first
+    return tuple(dict.fromkeys(w.code for w in own))
 
 
 def element_label(model: Model, link: int) -> str:

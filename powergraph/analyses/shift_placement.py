@@ -199,7 +199,7 @@ def transmission_document(raw: Mapping[str, Any], model: Model,
     clutches and brakes, and its modes table: a transmission ``powergraph modes`` takes."""
     shaft = next(name for name in ("in", "input", "input_shaft", "shaft_in")
                  if name not in {str(k) for k in raw["components"]})
-    frame = model.raw_id(next(c for c in model.components.values() if c.is_frame).id)
+    frame = model.raw_id(model.frame)
     document = {key: value for key, value in raw.items() if key not in ("ports", "links")}
     document["name"] = f"{raw['name']} with shift elements"
     document["components"] = {**raw["components"], shaft: {"name": "input shaft"}}
@@ -238,8 +238,7 @@ def _members(model: Model, output: str) -> list[str]:
     """One component per coaxial body (the levers' nodes), not the frame or the output."""
     from powergraph.analyses.lever import lever_diagram
 
-    frame = model.body_of[next(c for c in model.components.values() if c.is_frame).id]
-    taken = {frame, model.body_of[output]}
+    taken = {model.frame_body, model.body_of[output]}
     members = []
     for lever in lever_diagram(model).levers:
         for node in lever.nodes:

@@ -102,7 +102,7 @@ def write_loss_map(path, result, data_on_stdout: bool = False) -> None:
             handle.write("\n".join(lines) + "\n")
 
     write_atomically(path, write)
-    left_out = result.efficiency.size - len(lines) + 1
+    left_out = result.efficiency.size - len(rows["speed_rpm"])
     say_wrote(path, f"({len(lines) - 1} points" +
               (f"; {left_out} left out: no converged solution)" if left_out else ")"),
               data_on_stdout=data_on_stdout)
