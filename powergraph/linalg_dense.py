@@ -6,9 +6,16 @@ single solve's time is per-call overhead, not arithmetic. The LAPACK kernels beh
 ``np.linalg.solve`` and ``np.linalg.inv`` are called directly (the same calls, so the same
 digits), and the regularity test uses a condition bound from one inverse
 (:func:`dense_condition`), the singular values only when that bound is not decisive.
+
+The smallest systems (up to :data:`PLAIN_UP_TO` unknowns: a reducer's are 3×3) take the
+same steps on plain Python floats (:func:`solve_plain`): each numpy call costs a
+microsecond or more whatever its size, and the first LAPACK call of a process another
+millisecond or two. Gaussian elimination with partial pivoting is the algorithm of
+LAPACK's ``getrf``/``getrs``, so the two paths agree to rounding.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +30,8 @@ SETTLED = 8.0
 ROUND_OFF = 1e-8
 #: A small dense system whose unknowns span at most this factor is solved once, unscaled.
 WELL_SCALED = 1e3
+#: Systems of up to this many unknowns are solved in plain Python floats (:func:`solve_plain`).
+PLAIN_UP_TO = 6
 
 try:  # numpy's own kernels behind np.linalg.solve/inv, without their per-call checks
     from numpy.linalg import _umath_linalg as _kernels
@@ -98,8 +107,13 @@ def solve_dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None 
 
 def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
                   passes: int) -> Solved:
-    """:func:`solve_square` for a small dense matrix (the same steps, fewer calls)."""
+    """:func:`solve_square` for a small dense matrix (the same steps, fewer calls; plain
+    Python floats up to :data:`PLAIN_UP_TO` unknowns)."""
     failed = Solved(np.full(len(rhs), np.nan), np.inf)
+    if len(rhs) <= PLAIN_UP_TO:
+        x, cond = solve_plain(a.tolist(), rhs.tolist(),
+                              None if guess is None else guess.tolist(), passes)
+        return failed if x is None else Solved(np.array(x), cond)
     nonzero = a != 0
     magnitude = np.abs(a)
     rhs_size = np.abs(rhs)
@@ -149,3 +163,187 @@ def _dense_square(a: np.ndarray, rhs: np.ndarray, guess: np.ndarray | None,
     return Solved(x, dense_condition(m))
 
 
+_LOG_SETTLED = math.log(SETTLED)
+
+Matrix = list[list[float]]
+
+
+def factor(matrix: Matrix) -> tuple[Matrix, list[int]] | None:
+    """LU factors of a square matrix with partial pivoting (``L`` below the diagonal, unit
+    diagonal implied; ``U`` on and above), and the row order; None when a pivot is exactly
+    zero or not finite.
+
+    >>> lu, order = factor([[0.0, 2.0], [4.0, 1.0]])
+    >>> lu, order
+    ([[4.0, 1.0], [0.0, 2.0]], [1, 0])
+    """
+    lu = [row[:] for row in matrix]
+    n = len(lu)
+    order = list(range(n))
+    for k in range(n):
+        p, top = k, abs(lu[k][k])
+        for i in range(k + 1, n):
+            size = abs(lu[i][k])
+            if size > top:
+                p, top = i, size
+        if not 0.0 < top < math.inf:
+            return None
+        if p != k:
+            lu[k], lu[p] = lu[p], lu[k]
+            order[k], order[p] = order[p], order[k]
+        pivot_row = lu[k]
+        pivot = pivot_row[k]
+        for i in range(k + 1, n):
+            row = lu[i]
+            f = row[k] / pivot
+            row[k] = f
+            if f != 0.0:
+                for j in range(k + 1, n):
+                    row[j] -= f * pivot_row[j]
+    return lu, order
+
+
+def substitute(lu: Matrix, order: list[int], rhs: list[float]) -> list[float]:
+    """Solve ``A x = rhs`` from :func:`factor`'s output.
+
+    >>> substitute(*factor([[2.0, 0.0], [0.0, 4.0]]), [1.0, 1.0])
+    [0.5, 0.25]
+    """
+    n = len(lu)
+    y = [rhs[p] for p in order]
+    for i in range(n):
+        row, s = lu[i], y[i]
+        for j in range(i):
+            s -= row[j] * y[j]
+        y[i] = s
+    for i in range(n - 1, -1, -1):
+        row, s = lu[i], y[i]
+        for j in range(i + 1, n):
+            s -= row[j] * y[j]
+        y[i] = s / row[i]
+    return y
+
+
+def _solve(matrix: Matrix, rhs: list[float]) -> tuple[list[float] | None, tuple | None]:
+    """The solution (None if singular or not finite) and the factors."""
+    factors = factor(matrix)
+    if factors is None:
+        return None, None
+    x = substitute(*factors, rhs)
+    return (x if all(math.isfinite(v) for v in x) else None), factors
+
+
+def condition(matrix: Matrix, factors: tuple | None) -> float:
+    """:func:`powergraph.linalg_dense.dense_condition` from the LU factors: the 1-norm
+    condition number ``κ1`` gives ``κ1/n <= κ2 <= n·κ1``; exact ``κ2`` (numpy) only when
+    that bound straddles :data:`COND_LIMIT`.
+
+    >>> condition([[1.0, 0.0], [0.0, 1.0]], factor([[1.0, 0.0], [0.0, 1.0]]))
+    2.0
+    """
+    n = len(matrix)
+    if factors is None:
+        return math.inf
+    norm = 0.0
+    for j in range(n):
+        total = 0.0
+        for row in matrix:
+            total += abs(row[j])
+        if total > norm:
+            norm = total
+    inverse_norm = 0.0
+    for j in range(n):
+        unit = [0.0] * n
+        unit[j] = 1.0
+        total = 0.0
+        for v in substitute(*factors, unit):
+            total += abs(v)
+        if total > inverse_norm:
+            inverse_norm = total
+    k1 = norm * inverse_norm
+    if not math.isfinite(k1):
+        return math.inf
+    if n * k1 < COND_LIMIT:
+        return n * k1
+    if k1 > n * COND_LIMIT:
+        return k1 / n
+    return float(np.linalg.cond(np.array(matrix)))
+
+
+def solve_plain(a: Matrix, rhs: list[float], guess: list[float] | None = None,
+                passes: int = 1) -> tuple[list[float] | None, float]:
+    """The dense path of :func:`powergraph.linalg.solve_square` on lists: the solution
+    (None when it fails) and the condition number of the scaled system (a bound on the
+    same side of :data:`COND_LIMIT`).
+
+    Examples
+    --------
+    >>> x, cond = solve_plain([[2.0, 0.0], [0.0, 4.0]], [1.0, 1.0])
+    >>> x, cond < COND_LIMIT
+    ([0.5, 0.25], True)
+    """
+    n = len(rhs)
+    magnitude = [[abs(v) for v in row] for row in a]
+    rhs_size = [abs(v) for v in rhs]
+    # per column, the rows where it has a coefficient, and its magnitude there
+    entries = [[(i, row[j]) for i, row in enumerate(magnitude) if row[j] != 0.0]
+               for j in range(n)]
+
+    def scales(x: list[float]) -> list[float]:
+        d = [abs(v) for v in x]
+        terms = []
+        for row, size in zip(magnitude, rhs_size):
+            for m, s in zip(row, d):
+                if m * s > size:
+                    size = m * s
+            terms.append(size)
+        low = math.inf
+        for j, column in enumerate(entries):
+            implied = math.inf
+            for i, m in column:
+                if terms[i] > 0.0 and terms[i] < implied * m:
+                    implied = terms[i] / m
+            if d[j] < ROUND_OFF * implied < math.inf:
+                d[j] = implied
+            if 0.0 < d[j] < low:
+                low = d[j]
+        if low == math.inf:
+            return [1.0] * n
+        return [s if s > 0.0 else low for s in d]
+
+    def equilibrated(d: list[float]) -> tuple[Matrix, list[float]]:
+        """``a`` with its columns scaled by ``d``, then each row by its largest entry;
+        and the row scales."""
+        m, r = [], []
+        for row in a:
+            scaled_row = [v * s for v, s in zip(row, d)]
+            size = max(map(abs, scaled_row)) or 1.0
+            m.append([v / size for v in scaled_row])
+            r.append(size)
+        return m, r
+
+    def scaled(d: list[float]) -> tuple[list[float] | None, Matrix, tuple | None]:
+        m, r = equilibrated(d)
+        y, factors = _solve(m, [v / size for v, size in zip(rhs, r)])
+        return (None if y is None else [s * v for s, v in zip(d, y)]), m, factors
+
+    if guess is None:
+        x, _ = _solve(a, rhs)
+    else:
+        x = scaled(scales(guess))[0]
+    if x is None:
+        return None, math.inf
+    d = scales(x)
+    if passes <= 1 and max(d) <= WELL_SCALED * min(d):
+        m = equilibrated(d)[0]
+        return x, condition(m, factor(m))
+    for k in range(MAX_PASSES):
+        x, m, factors = scaled(d)
+        if x is None:
+            return None, math.inf
+        following = scales(x)
+        if k + 1 >= passes and all(abs(math.log(f / s)) < _LOG_SETTLED
+                                   for f, s in zip(following, d)):
+            break
+        d = following
+    return x, condition(m, factors)

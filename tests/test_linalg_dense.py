@@ -45,3 +45,65 @@ def test_the_small_dense_solve_is_the_scaled_solve() -> None:
 def test_an_exactly_singular_small_system_is_not_regular() -> None:
     solved = solve_dense_square(np.ones((3, 3)), np.ones(3))
     assert not solved.regular
+
+
+# --- the plain-Python path: the same steps on lists --------------------------------------
+# Expected values: the numpy path of the same function (LAPACK's getrf/getrs, which use
+# the same partial pivoting), forced by PLAIN_UP_TO = 0, and the ladder's closed form.
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+import powergraph.linalg_dense as linalg_dense  # noqa: E402
+from powergraph.linalg_dense import factor, solve_plain, substitute  # noqa: E402
+
+
+def numpy_path(a: np.ndarray, rhs: np.ndarray, guess=None, passes: int = 1):
+    """The dense path with the plain one switched off."""
+    saved = linalg_dense.PLAIN_UP_TO
+    linalg_dense.PLAIN_UP_TO = 0
+    try:
+        return linalg_dense._dense_square(a, rhs, guess, passes)
+    finally:
+        linalg_dense.PLAIN_UP_TO = saved
+
+
+@settings(max_examples=300, deadline=None)
+@given(n=st.integers(1, 6), seed=st.integers(0, 2**32 - 1),
+       spread=st.integers(0, 12), zeros=st.floats(0.0, 0.6))
+def test_the_plain_path_gives_the_numpy_paths_solution_and_verdict(
+        n: int, seed: int, spread: int, zeros: float) -> None:
+    """Random systems with entries over ``spread`` decades and some exact zeros: the same
+    regularity verdict, and where regular the same solution to rounding."""
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, n)) * 10.0 ** rng.integers(-spread, spread + 1, size=(n, n))
+    a[rng.random((n, n)) < zeros] = 0.0
+    rhs = rng.normal(size=n)
+    expected = numpy_path(a, rhs)
+    x, cond = solve_plain(a.tolist(), rhs.tolist())
+    regular = x is not None and cond < COND_LIMIT
+    if abs(np.log10(max(expected.condition, 1.0)) - 12) > 0.5:   # not at the limit itself
+        assert regular == expected.regular
+    if regular and expected.regular:
+        assert np.allclose(x, expected.x, rtol=1e-9 * expected.condition, atol=0)
+        assert np.allclose(a @ np.array(x), rhs,
+                           atol=1e-9 * np.max(np.abs(a) * np.abs(np.array(x))) + 1e-300)
+
+
+@pytest.mark.parametrize("n", [2, 4, 6])
+def test_the_plain_path_scales_a_ladder_as_the_numpy_path(n: int) -> None:
+    """x_k = 1e-40^k: unknowns spanning 200 decades, each accurate relative to itself."""
+    t = ladder(n, 1e-40)
+    x, cond = solve_plain(t.dense().tolist(), np.eye(n)[0].tolist(), passes=2)
+    assert cond < COND_LIMIT
+    assert np.allclose(x, [1e-40 ** k for k in range(n)], rtol=1e-13, atol=0)
+
+
+def test_a_singular_system_has_no_plain_solution() -> None:
+    assert factor([[1.0, 2.0], [2.0, 4.0]]) is None or \
+        solve_plain([[1.0, 2.0], [2.0, 4.0]], [1.0, 2.0])[1] >= COND_LIMIT
+    assert solve_plain([[0.0, 0.0], [0.0, 1.0]], [1.0, 1.0])[0] is None
+
+
+def test_factor_and_substitute_solve_with_row_exchanges() -> None:
+    """[[0, 2], [4, 1]] x = [2, 9]: x = (2, 1) by hand (the first pivot needs a swap)."""
+    assert substitute(*factor([[0.0, 2.0], [4.0, 1.0]]), [2.0, 9.0]) == [2.0, 1.0]

@@ -37,7 +37,11 @@ def parse_size(text: str) -> int:
     return max(1, int(value * scale))
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The command-line parser. Given the arguments, only the command they name is
+    registered (each command module imports what it needs, so ``powergraph solve`` does
+    not load the other sixteen); without them, or when they name none, every command is
+    (``--help`` lists them all)."""
     parser = CommandParser(
         prog="powergraph",
         description="Power flow, losses and efficiency of gear trains described as graphs.")
@@ -49,7 +53,8 @@ def build_parser() -> argparse.ArgumentParser:
                              "environment variable POWERGRAPH_MAX_MODEL_BYTES)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
-    for name in COMMANDS:
+    named = command_named(argv)
+    for name in COMMANDS if named is None else (named,):
         try:
             module = importlib.import_module(f"powergraph.cli.cmd_{name}")
         except ModuleNotFoundError as exc:
@@ -60,9 +65,25 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def command_named(argv: list[str] | None) -> str | None:
+    """The command ``argv`` names (its first word that is not an option or the value of
+    ``--max-model-size``), or None.
+
+    >>> command_named(["--max-model-size", "2M", "solve", "m.yaml"]), command_named(["-h"])
+    ('solve', None)
+    """
+    words = iter(argv or ())
+    for word in words:
+        if word == "--max-model-size":
+            next(words, None)
+        elif not word.startswith("-"):
+            return word if word in COMMANDS else None
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns (and exits with) the status code."""
-    parser = build_parser()
+    parser = build_parser(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(argv)
     try:
         status = _run(parser, args)

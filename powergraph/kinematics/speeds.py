@@ -17,10 +17,13 @@ import numpy as np
 from powergraph.errors import KinematicsError
 from powergraph.kinematics.elements import Element, body_columns, element_stencil, elements_of
 from powergraph.linalg import (
+    COND_LIMIT,
+    PLAIN_UP_TO,
     Triplets,
     equilibrated,
     matching,
     rank,
+    solve_plain,
     solve_square,
     SVD_RTOL,
     svd_rank,
@@ -188,8 +191,12 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
     is_known = np.zeros(len(model.bodies), dtype=bool)
     is_known[list(known)] = True
     unknown = np.flatnonzero(~is_known)
-    reduced_rhs = rhs - rows.dot(solution)
     reduced, square = _reduced(model, rows, unknown)
+    if 0 < unknown.size <= PLAIN_UP_TO and square[0].size == unknown.size:
+        plain = _solve_plain(rows, square, unknown, rhs.tolist(), solution.tolist())
+        if plain is not None:
+            return np.array(plain)
+    reduced_rhs = rhs - rows.dot(solution)
     determined = True
     if unknown.size:
         values, determined = _solve_unknown(reduced, reduced_rhs, square)
@@ -202,6 +209,40 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
                               + " cannot all hold")
     if not determined:
         raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
+    return solution
+
+
+def _solve_plain(rows: Triplets, square: tuple, unknown: np.ndarray, rhs: list[float],
+                 solution: list[float]) -> list[float] | None:
+    """:func:`_solve_reduced`'s square case on plain Python floats (a few unknowns: no
+    numpy call costs more than the arithmetic); None when the matched rows are singular
+    or any row is not met (the general path then says why)."""
+    matched, columns, _ = square
+    entries = list(zip(rows.rows.tolist(), rows.cols.tolist(), rows.values.tolist()))
+    free = {body: j for j, body in enumerate(unknown[columns].tolist())}
+    row_of = {row: i for i, row in enumerate(matched.tolist())}
+    n = len(free)
+    matrix = [[0.0] * n for _ in range(n)]
+    reduced = [rhs[row] for row in matched.tolist()]
+    for row, col, value in entries:
+        i = row_of.get(row)
+        if i is None:
+            continue
+        if col in free:
+            matrix[i][free[col]] += value
+        else:
+            reduced[i] -= value * solution[col]
+    x, cond = solve_plain(matrix, reduced)
+    if x is None or not cond < COND_LIMIT:
+        return None
+    for body, j in free.items():
+        solution[body] = x[j]
+    residual = [-v for v in rhs]
+    for row, col, value in entries:
+        residual[row] += value * solution[col]
+    scale = max(1.0, max(map(abs, solution)))
+    if residual and max(map(abs, residual)) > 1e-9 * scale:
+        return None
     return solution
 
 

@@ -13,6 +13,7 @@ own bodies.
 """
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 from typing import Callable
 
@@ -20,6 +21,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil
 from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
+from powergraph.linalg import PLAIN_UP_TO
 
 #: A driver code per element: +1 gear a drives, -1 gear b drives, 0 no power passes.
 Pattern = tuple[int, ...]
@@ -73,6 +75,11 @@ def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.
     """
     bodies, outside, n_bodies, frame = _columns(tuple(map(ELEMENT_BODIES, elements)),
                                                 tuple(external), frame_body)
+    if len(elements) <= PLAIN_UP_TO:
+        return np.array(own_scales_plain(bodies.tolist(), [e.ratio for e in elements],
+                                         np.asarray(forces, dtype=float).tolist(),
+                                         np.asarray(factors, dtype=float).tolist(),
+                                         _external_load(n_bodies, outside, external), frame))
     load = np.zeros(n_bodies)
     np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
     ratios = np.array([e.ratio for e in elements], dtype=float)
@@ -96,6 +103,38 @@ def _columns(triples: tuple[tuple[str, str, str], ...], external: tuple[str, ...
     frame = index.get(frame_body, -1)
     bodies.flags.writeable = outside.flags.writeable = False
     return bodies, outside, len(index), frame
+
+
+def _external_load(n_bodies: int, outside: np.ndarray, external: dict) -> list[float]:
+    load = [0.0] * n_bodies
+    for body, torque in zip(outside.tolist(), external.values()):
+        load[body] += abs(torque)
+    return load
+
+
+def own_scales_plain(bodies: list, ratios: list, forces: list, factors: list,
+                     load: list, frame: int) -> list[float]:
+    """:func:`own_scales` of one operating point on plain Python floats (a few elements:
+    no numpy call costs more than the arithmetic). ``load`` is changed: each element's
+    torque magnitudes are added to its bodies'.
+
+    >>> own_scales_plain([[1, 2, 0]], [-2.0], [3.0], [1.0], [0.0, 0.0, 0.0], 0)
+    [6.0]
+    """
+    for (a, b, c), ratio, force, factor in zip(bodies, ratios, forces, factors):
+        on_a, on_b, on_c = element_stencil(ratio, factor)
+        load[a] += abs(on_a * force)
+        load[b] += abs(on_b * force)
+        load[c] += abs(on_c * force)
+    top = max(load, default=0.0)
+    scales = []
+    for triple in bodies:
+        own = -math.inf
+        for body in triple:
+            if body != frame and load[body] > own:
+                own = load[body]
+        scales.append(own if own > -math.inf else top)
+    return scales
 
 
 def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,

@@ -17,10 +17,14 @@ from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
 from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
 from powergraph.linalg import (
+    COND_LIMIT,
+    PLAIN_UP_TO,
     SVD_RTOL,
     Triplets,
     equilibrated,
+    others,
     solve_dense_square,
+    solve_plain,
     solve_square,
     use_sparse,
 )
@@ -148,6 +152,9 @@ class _Layout:
     cols: np.ndarray
     unknown_rows: np.ndarray  # the row of each unknown external torque, in column order
     others: np.ndarray       # the other rows, which fix the forces
+    # per element, for its gear a, gear b and carrier: (row among ``others``, or -1;
+    # position among the unknown torques, or -1) — the plain-Python path's map
+    places: tuple[tuple[tuple[int, int], ...], ...]
 
 
 def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layout | None:
@@ -173,12 +180,16 @@ def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], .
     rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], unknown_rows])
     cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
     square = len(body_ids) == n_el + n_ext and not use_sparse(n_el)
-    distinct = len(np.unique(rows * (n_el + n_ext) + cols)) == len(rows)
-    if not (square and distinct and len(np.unique(unknown_rows)) == n_ext):
+    distinct = len(set((rows * (n_el + n_ext) + cols).tolist())) == len(rows)
+    if not (square and distinct and len(set(unknown_rows.tolist())) == n_ext):
         return None
     order = np.lexsort((cols, rows))
-    return _Layout(order, rows[order], cols[order], unknown_rows,
-                   np.setdiff1d(np.arange(len(body_ids)), unknown_rows))
+    balance = others(len(body_ids), unknown_rows)
+    row_of = {int(body): i for i, body in enumerate(balance)}
+    unknown_of = {int(body): j for j, body in enumerate(unknown_rows)}
+    places = tuple(tuple((row_of.get(body, -1), unknown_of.get(body, -1)) for body in triple)
+                   for triple in bodies.tolist())
+    return _Layout(order, rows[order], cols[order], unknown_rows, balance, places)
 
 
 def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, factors,
@@ -190,6 +201,8 @@ def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, fact
     if layout is None:
         return None
     n_el = len(elements)
+    if n_el <= PLAIN_UP_TO:
+        return _solve_plain(layout, elements, factors, rhs, guess)
     ratio = np.array([el.ratio for el in elements], dtype=float)
     on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
     values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c,
@@ -211,6 +224,35 @@ def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, fact
     return x
 
 
+def _solve_plain(layout: _Layout, elements: tuple[Element, ...], factors,
+                 rhs: np.ndarray, guess: np.ndarray | None) -> np.ndarray | None:
+    """:func:`_solve_small`'s steps on plain Python floats (a few elements: no numpy
+    call costs more than the arithmetic): the forces from the rows of the bodies with no
+    unknown torque, then each unknown torque from its own body's row."""
+    n_el = len(elements)
+    matrix = [[0.0] * n_el for _ in range(n_el)]
+    torques = rhs[layout.unknown_rows].tolist()
+    balance = rhs[layout.others].tolist()
+    terms: list[list[tuple[int, float]]] = [[] for _ in torques]
+    for k, (el, f, places) in enumerate(zip(elements, np.asarray(factors, dtype=float).tolist(),
+                                            layout.places)):
+        for (row, unknown), coefficient in zip(places, element_stencil(el.ratio, f)):
+            if row >= 0:
+                matrix[row][k] += coefficient
+            else:
+                terms[unknown].append((k, coefficient))
+    forces, cond = solve_plain(matrix, balance, None if guess is None
+                               else guess[:n_el].tolist())
+    if forces is None or not cond < COND_LIMIT:
+        return None
+    for j, body_terms in enumerate(terms):
+        total = 0.0
+        for k, coefficient in body_terms:
+            total += coefficient * forces[k]
+        torques[j] -= total
+    return np.array(forces + torques)
+
+
 def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,
                         guess: np.ndarray | None) -> np.ndarray | None:
     """A square balance with the unknown external torques eliminated first: each one
@@ -218,11 +260,11 @@ def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,
     and its row then gives it. None when that part is not regular (or two unknown torques
     share a body)."""
     unknown_rows = system.rows[system.cols >= n_el]
-    if len(np.unique(unknown_rows)) != system.shape[1] - n_el:
+    if len(set(unknown_rows.tolist())) != system.shape[1] - n_el:
         return None
-    others = np.setdiff1d(np.arange(system.shape[0]), unknown_rows)
-    forces_part = system.part(others, np.arange(n_el))
-    solved = solve_square(forces_part, rhs[others], None if guess is None else guess[:n_el])
+    balance = others(system.shape[0], unknown_rows)
+    forces_part = system.part(balance, np.arange(n_el))
+    solved = solve_square(forces_part, rhs[balance], None if guess is None else guess[:n_el])
     if not solved.regular:
         return None
     x = np.zeros(system.shape[1])

@@ -106,6 +106,21 @@ def test_solve_does_not_import_matplotlib_or_sympy() -> None:
     assert "MPL" not in proc.stderr and "SYMPY" not in proc.stderr
 
 
+def test_solve_loads_no_other_command_nor_numpy_ma() -> None:
+    """Start-up: `powergraph solve` registers its own command only, and takes no path that
+    imports numpy.ma (np.unique does, 10 ms)."""
+    check = ("import sys\n"
+             "from powergraph.cli.main import main\n"
+             "assert main(['solve', %r, '--json']) == 0\n"
+             "others = sorted(m for m in sys.modules if m.startswith('powergraph.cli.cmd_')"
+             " and m != 'powergraph.cli.cmd_solve')\n"
+             "print(others, 'numpy.ma' in sys.modules, file=sys.stderr)") % RV
+    proc = subprocess.run([sys.executable, "-c", check], capture_output=True, text=True,
+                          cwd=ROOT)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stderr.strip().splitlines()[-1] == "[] False"
+
+
 def test_solve_reports_the_cycloid_fluctuation_at_the_output(capsys) -> None:
     """RV: i_train = 1 + (z2/z1)(1 + i_stage) = 4 + 3 i_stage, so a relative stage deviation
     δ shows at the output as 3 i_stage/i_train δ = (117/121) δ (input speed held)."""
