@@ -233,31 +233,43 @@ def _solve(matrix: Matrix, rhs: list[float]) -> tuple[list[float] | None, tuple 
     return (x if all(math.isfinite(v) for v in x) else None), factors
 
 
-def condition(matrix: Matrix, factors: tuple | None) -> float:
-    """:func:`powergraph.linalg_dense.dense_condition` from the LU factors: the 1-norm
-    condition number ``κ1`` gives ``κ1/n <= κ2 <= n·κ1``; exact ``κ2`` (numpy) only when
-    that bound straddles :data:`COND_LIMIT`.
+def condition(a: Matrix, factors: tuple | None, scaled_by: tuple | None = None,
+              factored_by: tuple | None = None) -> float:
+    """:func:`dense_condition` of ``m = diag(1/r) a diag(d)`` (``scaled_by = (d, r)``;
+    ``a`` itself when None) from the LU factors of another scaling of ``a``,
+    ``diag(1/r0) a diag(d0)`` (``factored_by = (d0, r0)``; ``a`` when None), since
+    ``m⁻¹ = diag(d0/d) (its inverse) diag(r/r0)``: no second factorization. The 1-norm
+    condition number ``κ1`` gives ``κ1/n <= κ2 <= n·κ1``; the exact ``κ2`` (numpy) only
+    when that bound straddles :data:`COND_LIMIT`.
 
     >>> condition([[1.0, 0.0], [0.0, 1.0]], factor([[1.0, 0.0], [0.0, 1.0]]))
     2.0
+    >>> a = [[1.0, 0.0], [0.0, 1e-9]]    # diag(1, 1e-9) scaled by d = (1, 1e9): the identity
+    >>> condition(a, factor(a), ([1.0, 1e9], [1.0, 1.0]))
+    2.0
     """
-    n = len(matrix)
+    n = len(a)
     if factors is None:
         return math.inf
+    d, r = scaled_by if scaled_by is not None else ([1.0] * n, [1.0] * n)
+    d0, r0 = factored_by if factored_by is not None else ([1.0] * n, [1.0] * n)
     norm = 0.0
     for j in range(n):
         total = 0.0
-        for row in matrix:
-            total += abs(row[j])
+        for row, size in zip(a, r):
+            total += abs(row[j]) / size
+        total *= d[j]
         if total > norm:
             norm = total
     inverse_norm = 0.0
+    rescale = [u / v for u, v in zip(d0, d)]
     for j in range(n):
         unit = [0.0] * n
         unit[j] = 1.0
         total = 0.0
-        for v in substitute(*factors, unit):
-            total += abs(v)
+        for v, w in zip(substitute(*factors, unit), rescale):
+            total += abs(v) * w
+        total *= r[j] / r0[j]
         if total > inverse_norm:
             inverse_norm = total
     k1 = norm * inverse_norm
@@ -267,7 +279,8 @@ def condition(matrix: Matrix, factors: tuple | None) -> float:
         return n * k1
     if k1 > n * COND_LIMIT:
         return k1 / n
-    return float(np.linalg.cond(np.array(matrix)))
+    return float(np.linalg.cond(np.array([[v * s / size for v, s in zip(row, d)]
+                                          for row, size in zip(a, r)])))
 
 
 def solve_plain(a: Matrix, rhs: list[float], guess: list[float] | None = None,
@@ -311,39 +324,43 @@ def solve_plain(a: Matrix, rhs: list[float], guess: list[float] | None = None,
             return [1.0] * n
         return [s if s > 0.0 else low for s in d]
 
-    def equilibrated(d: list[float]) -> tuple[Matrix, list[float]]:
-        """``a`` with its columns scaled by ``d``, then each row by its largest entry;
-        and the row scales."""
-        m, r = [], []
-        for row in a:
-            scaled_row = [v * s for v, s in zip(row, d)]
-            size = max(map(abs, scaled_row)) or 1.0
-            m.append([v / size for v in scaled_row])
-            r.append(size)
-        return m, r
+    def row_sizes(d: list[float]) -> list[float]:
+        """Each row's largest term with the columns scaled by ``d`` (1 for a zero row)."""
+        sizes = []
+        for row in magnitude:
+            size = 0.0
+            for m, s in zip(row, d):
+                if m * s > size:
+                    size = m * s
+            sizes.append(size or 1.0)
+        return sizes
 
-    def scaled(d: list[float]) -> tuple[list[float] | None, Matrix, tuple | None]:
-        m, r = equilibrated(d)
+    def scaled(d: list[float]) -> tuple[list[float] | None, list[float], tuple | None]:
+        """Solve with the columns scaled by ``d``, each row by its largest entry."""
+        r = row_sizes(d)
+        m = [[v * s / size for v, s in zip(row, d)] for row, size in zip(a, r)]
         y, factors = _solve(m, [v / size for v, size in zip(rhs, r)])
-        return (None if y is None else [s * v for s, v in zip(d, y)]), m, factors
+        return (None if y is None else [s * v for s, v in zip(d, y)]), r, factors
 
     if guess is None:
-        x, _ = _solve(a, rhs)
+        x, factors = _solve(a, rhs)
+        factored_by = None
     else:
-        x = scaled(scales(guess))[0]
+        d0 = scales(guess)
+        x, r0, factors = scaled(d0)
+        factored_by = (d0, r0)
     if x is None:
         return None, math.inf
     d = scales(x)
     if passes <= 1 and max(d) <= WELL_SCALED * min(d):
-        m = equilibrated(d)[0]
-        return x, condition(m, factor(m))
+        return x, condition(a, factors, (d, row_sizes(d)), factored_by)
     for k in range(MAX_PASSES):
-        x, m, factors = scaled(d)
+        used = d
+        x, r, factors = scaled(used)
         if x is None:
             return None, math.inf
-        following = scales(x)
+        d = scales(x)
         if k + 1 >= passes and all(abs(math.log(f / s)) < _LOG_SETTLED
-                                   for f, s in zip(following, d)):
+                                   for f, s in zip(d, used)):
             break
-        d = following
-    return x, condition(m, factors)
+    return x, condition(a, factors, (used, r), (used, r))

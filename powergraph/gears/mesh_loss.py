@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -157,6 +158,9 @@ class MeshLoss:
 def path_of_contact(g: MeshGeometry, strict: bool = True) -> PathOfContact:
     """The transverse path of contact of an involute pair (DIN 3960 formulas).
 
+    Kept for the last pairs asked for (a geometry is frozen; a friction solve asks for
+    the same pair's path every pass).
+
     Raises ModelError when the pair cannot mesh (teeth, shifts or addenda out of range), and
     when a tip passes the other gear's interference point (an undercut flank) — unless
     ``strict`` is False, which computes the involute path all the same and lists the
@@ -166,6 +170,11 @@ def path_of_contact(g: MeshGeometry, strict: bool = True) -> PathOfContact:
     >>> round(p.addendum_path_1, 4), round(p.addendum_path_2, 4)
     (2.298, 2.5293)
     """
+    return _path_of_contact(g, strict)
+
+
+@lru_cache(maxsize=256)
+def _path_of_contact(g: MeshGeometry, strict: bool) -> PathOfContact:
     _check(g)
     alpha_n, beta = math.radians(g.pressure_angle_deg), math.radians(g.helix_angle_deg)
     alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))

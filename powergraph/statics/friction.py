@@ -19,7 +19,6 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 from functools import lru_cache
-from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 from powergraph.errors import SolveError
@@ -58,7 +57,8 @@ def friction_meshes(model: Model) -> dict[int, Any]:
             if link.type == "mesh" and "friction" in link.blocks}
 
 
-def solve_with_friction(model: Model, solve: Callable[[Model, Mapping[str, float]], Any],
+def solve_with_friction(model: Model,
+                        solve: Callable[[Mapping[int, float], Mapping[str, float]], Any],
                         tolerance: float = 1e-12, max_passes: int = MAX_PASSES) -> Any:
     """Solve ``model`` with its load-dependent mesh efficiencies and bearing torques made
     consistent.
@@ -66,9 +66,12 @@ def solve_with_friction(model: Model, solve: Callable[[Model, Mapping[str, float
     Parameters
     ----------
     model : Model
-        The train; its friction meshes' ``efficiency`` is replaced pass by pass in copies.
+        The train (not changed).
     solve : callable
-        The fixed-efficiency solver (``(Model, {body: bearing torque}) -> PowerFlowResult``).
+        The fixed-efficiency solver of ``model`` at its operating point:
+        ``({friction mesh's link index: efficiency}, {body: bearing torque}) ->
+        PowerFlowResult``; the train's structure and speeds do not change between passes,
+        only these numbers.
     tolerance : float
         Largest change of any efficiency, and of any bearing torque relative to the largest
         torque of the train, between the last two passes.
@@ -90,7 +93,7 @@ def solve_with_friction(model: Model, solve: Callable[[Model, Mapping[str, float
     passes = 0
     while True:
         passes += 1
-        result = solve(_fixed(model, current), extra)
+        result = solve(current, extra)
         states = tuple(_state(model, result, frictions[k]) for k in sorted(frictions))
         bearings = bearing_states(model, result) if model.has_bearing_losses else ()
         torques = torques_on_bodies(bearings)
@@ -142,24 +145,9 @@ def needs_friction(model: Model) -> bool:
     return model.has_bearing_losses or any("friction" in link.blocks for link in model.links)
 
 
-def _fixed(model: Model, efficiencies: Mapping[int, float]) -> Model:
-    """A copy whose friction meshes have the given efficiencies and no friction block."""
-    for link, eta in efficiencies.items():
-        blocks = {k: v for k, v in model.links[link].blocks.items() if k != "friction"}
-        model = model.with_link(link, efficiency=eta, blocks=MappingProxyType(blocks))
-    return model
-
-
-@lru_cache(maxsize=1024)
-def _path(geometry: Any) -> Any:
-    from powergraph.gears.mesh_loss import path_of_contact  # only trains with friction
-
-    return path_of_contact(geometry)
-
-
 @lru_cache(maxsize=1024)
 def _loss_factor(geometry: Any) -> float:
-    from powergraph.gears.mesh_loss import mesh_loss
+    from powergraph.gears.mesh_loss import mesh_loss  # only trains with friction
 
     return mesh_loss(geometry).loss_factor
 
@@ -175,7 +163,9 @@ def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     if friction.model == "cycloid":      # pin ring: constant, force at the disc's pitch circle
         radius, h_v = friction.pitch_radius / 1000.0, friction.loss_factor
     else:
-        radius = _path(friction.geometry).working_radius_1 / 1000.0   # m
+        from powergraph.gears.mesh_loss import path_of_contact  # only trains with friction
+
+        radius = path_of_contact(friction.geometry).working_radius_1 / 1000.0   # m
         h_v = _loss_factor(friction.geometry)
     a, b = link.between
     on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)

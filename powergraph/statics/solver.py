@@ -75,14 +75,22 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
         from powergraph.statics.machines import solve_machines
 
         return solve_machines(model, speeds, solve)
+    elements = elements_of(model)
     if extra_torques is None and needs_friction(model):
         # the passes change efficiencies and bearing torques, never the motion: the speeds
-        # are solved once for the operating point
-        kin = solve_speeds(model, speeds)
-        return solve_with_friction(model, lambda fixed, extra: _solve(fixed, kin, extra))
-    elements = elements_of(model)
+        # are solved once for the operating point, the structure kept
+        kin = solve_speeds(model, speeds, elements=elements)
+        return solve_with_friction(model, lambda efficiencies, extra: _solve(
+            model, kin, extra, with_efficiencies(elements, efficiencies)))
     return _solve(model, solve_speeds(model, speeds, elements=elements), extra_torques,
                   elements)
+
+
+def with_efficiencies(elements: tuple[Element, ...],
+                      efficiencies: Mapping[int, float]) -> tuple[Element, ...]:
+    """The elements with these efficiencies (by link index) in place of their own."""
+    return tuple(dataclasses.replace(el, efficiency=efficiencies[el.link])
+                 if el.link in efficiencies else el for el in elements)
 
 
 def _solve(model: Model, kin: Kinematics, extra_torques: Mapping[str, float] | None,
