@@ -199,8 +199,23 @@ def driver_codes(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> np.
 
 
 def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Pattern:
-    """Who drives each element (:func:`driver_codes`), as a pattern."""
-    return tuple(driver_codes(forces, rel, scales).tolist())
+    """Who drives each element (:func:`driver_codes`), as a pattern.
+
+    >>> pattern_of(np.array([-1.0, 1e-13, 2.0]), np.array([2.0, 2.0, 0.0]), np.ones(3))
+    (1, 0, 0)
+    """
+    if len(forces) > PLAIN_UP_TO:
+        return tuple(driver_codes(forces, rel, scales).tolist())
+    codes = []      # driver_codes on plain floats (a few elements)
+    for force, speed, scale in zip(np.asarray(forces, dtype=float).tolist(),
+                                   np.asarray(rel, dtype=float).tolist(),
+                                   np.asarray(scales, dtype=float).tolist()):
+        power = -force * speed
+        if speed == 0.0 or abs(force) <= FORCE_NOISE * scale or power == 0.0:
+            codes.append(0)
+        else:
+            codes.append(1 if power > 0.0 else -1)
+    return tuple(codes)
 
 
 def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
@@ -259,9 +274,10 @@ def factors_for(codes, efficiencies) -> np.ndarray:
 
 
 def factors_of(pattern: Pattern, elements: tuple[Element, ...]) -> np.ndarray:
-    """``f = η`` where gear a drives, ``1/η`` where gear b drives, 1 where nothing passes."""
-    return factors_for(np.array(pattern, dtype=int),
-                       np.array([e.efficiency for e in elements], dtype=float))
+    """``f = η`` where gear a drives, ``1/η`` where gear b drives, 1 where nothing passes
+    (:func:`factor_of` per element)."""
+    return np.array([float(factor_of(code, e.efficiency))
+                     for code, e in zip(pattern, elements)], dtype=float).reshape(len(elements))
 
 
 def agreeing(assumed, found) -> np.ndarray:

@@ -24,7 +24,6 @@ from typing import Any, Callable, Mapping
 from powergraph.errors import SolveError
 from powergraph.kinematics.elements import element_stencil
 from powergraph.model.spec import Model
-from powergraph.statics.bearings import bearing_states, torques_on_bodies, with_bearings
 
 MAX_PASSES = 60
 
@@ -87,6 +86,8 @@ def solve_with_friction(model: Model,
     SolveError
         When the efficiencies or bearing torques do not converge in ``max_passes``.
     """
+    from powergraph.statics.bearings import bearing_states, torques_on_bodies, with_bearings
+
     frictions = friction_meshes(model)
     current = {k: (1.0 if f.load_dependent else f.efficiency()[1]) for k, f in frictions.items()}
     extra: dict[str, float] = {}

@@ -15,7 +15,6 @@ import numpy as np
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
 from powergraph.kinematics.elements import body_columns
 from powergraph.model.spec import Model
-from powergraph.statics.bearings import with_extra_torques
 from powergraph.statics.directions import (
     factors_of,
     force_scales,
@@ -26,7 +25,6 @@ from powergraph.statics.directions import (
 from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
 from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
-from powergraph.statics.search import Statics, statics_of
 
 
 def solve(model: Model, speeds: Mapping[str, float] | None = None,
@@ -98,30 +96,31 @@ def _solve(model: Model, kin: Kinematics, extra_torques: Mapping[str, float] | N
     """:func:`solve` at given speeds (constant efficiencies, known bearing torques)."""
     elements = elements_of(model) if elements is None else elements
     loads = loads_of(model, kin)
-    if extra_torques:
+    if extra_torques:     # a pass of the bearing iteration (only trains with bearing losses)
+        from powergraph.statics.bearings import with_extra_torques
+
         loads = with_extra_torques(loads, extra_torques)
     rel = relative_speeds(elements, kin)
 
-    st = statics_of(model, elements, loads, rel)
-
     def forces(factors: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         eq = _equilibrium(model, elements, loads, factors, kin, last)
-        last[:] = [eq, np.array(factors, dtype=float)]
-        return eq.forces, force_scales(elements, eq.forces, factors, eq.external,
-                                       model.frame_body)
+        scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
+        last[:] = [eq, np.array(factors, dtype=float), scales]
+        return eq.forces, scales
 
-    last: list = []    # the previous solve and its factors: its sizes hint the next one
+    # the previous solve, its factors and its force scales: its sizes hint the next solve
+    last: list = []
     pattern, passes, visited = settle(forces, elements, rel)
     if pattern is not None:
         factors = factors_of(pattern, elements)
-        return _assemble(model, kin, elements, loads, factors, st, passes, last)
+        return _assemble(model, kin, elements, loads, factors, rel, passes, last)
     from powergraph.statics.locking import decide
 
     decision = decide(model, elements, loads, rel, forces, visited)
     search = DirectionSearch(method=decision.method, solutions=decision.solutions,
                              complete=decision.complete)
     if decision.chosen is not None:
-        return _assemble(model, kin, elements, loads, decision.chosen.factors, st, passes,
+        return _assemble(model, kin, elements, loads, decision.chosen.factors, rel, passes,
                          search=search)
     lock = Lock(meshes=tuple(elements[k].link for k in decision.locking),
                 reasons=decision.reasons, asked=kin)
@@ -133,11 +132,11 @@ def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
                  last: list = ()) -> Equilibrium:
     """The torque balance, solved scaled so each force and torque is accurate relative to
     itself (a long chain's last torque, tiny efficiencies); the previous solve, when there
-    is one (``[equilibrium, factors]``), tells the size of each unknown, or is the answer
-    when its factors are the same."""
+    is one (``[equilibrium, factors, scales]``), tells the size of each unknown, or is the
+    answer when its factors are the same."""
     guess = None
     if last:
-        previous, previous_factors = last
+        previous, previous_factors, _ = last
         if np.array_equal(previous_factors, factors):
             return previous
         guess = np.concatenate([previous.forces, [previous.external[b] for b in loads.unknown]])
@@ -145,13 +144,16 @@ def _equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
 
 
 def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads: Loads,
-              factors: np.ndarray, st: Statics, passes: int,
+              factors: np.ndarray, rel: np.ndarray, passes: int,
               last: list = (), search: DirectionSearch | None = None
               ) -> PowerFlowResult:
     """The result for consistent factors: forces, each element's driver, losses."""
     eq = _equilibrium(model, elements, loads, factors, kin, last)
-    scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
-    pattern = pattern_of(eq.forces, st.rel, scales)
+    if last and last[0] is eq:    # the last solve of the iteration: its scales are known
+        scales = last[2]
+    else:
+        scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
+    pattern = pattern_of(eq.forces, rel, scales)
     flows = _element_flows(elements, eq.forces, factors, pattern, kin)
     return _result(model, kin, flows, eq, passes, search)
 
