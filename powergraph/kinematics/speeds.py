@@ -137,7 +137,6 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     """
     elements = elements_of(model) if elements is None else elements
     rows, dof = _structure(model, elements)
-    n_bodies = len(model.bodies)
     if dof == 0:
         raise KinematicsError("the train cannot move (0 degrees of freedom): its meshes and "
                               "couplings lock every body")

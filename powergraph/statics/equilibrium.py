@@ -134,12 +134,9 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     train's power over the relative speed of the element or the speed of the body; 0
     where that speed is 0 (the solve then takes the size the neighbours give)."""
     power = max((abs(t * speeds[b]) for b, t in loads.given.items()), default=0.0) or 1.0
-    w = body_columns(elements, speeds).astype(float).reshape(len(elements), 3)
-    rel = np.abs(np.concatenate([w[:, 0] - w[:, 2],
-                                 np.array([speeds[b] for b in loads.unknown], dtype=float)]))
-    out = np.zeros(len(rel))
-    np.divide(power, rel, out=out, where=rel > 0)
-    return out
+    rel = [abs(speeds[el.body_a] - speeds[el.body_c]) for el in elements]
+    rel += [abs(speeds[b]) for b in loads.unknown]
+    return np.array([power / w if w > 0 else 0.0 for w in rel], dtype=float)
 
 
 @dataclass(frozen=True)

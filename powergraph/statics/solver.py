@@ -13,7 +13,6 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
-from powergraph.kinematics.elements import body_columns
 from powergraph.model.spec import Model
 from powergraph.statics.directions import (
     factors_of,
@@ -178,20 +177,13 @@ def _element_flows(elements: tuple[Element, ...], forces: np.ndarray, factors: n
                    pattern, kin: Kinematics) -> tuple[ElementFlow, ...]:
     """Each element's torques (its stencil times its force), carrier-frame power, driver
     and loss."""
-    ratio = np.array([el.ratio for el in elements], dtype=float)
-    factors = np.asarray(factors, dtype=float)
-    forces = np.asarray(forces, dtype=float)
-    on_a, on_b, on_c = element_stencil(ratio, factors)
-    w = body_columns(elements, kin.body_speeds).astype(float).reshape(len(elements), 3)
-    power_a = -forces * (w[:, 0] - w[:, 2])   # fed in by gear a, carrier frame
-    loss = power_a * (1.0 - factors)          # = -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
-    code = np.asarray(pattern, dtype=int).reshape(len(elements))
-    virtual = np.where(code > 0, power_a, np.where(code < 0, -power_a * factors, 0.0))
-    columns = zip(elements, (on_a * forces).tolist(), (on_b * forces).tolist(),
-                  (on_c * forces).tolist(), forces.tolist(), factors.tolist(), code.tolist(),
-                  virtual.tolist(), loss.tolist())
+    speeds = kin.body_speeds
     out = []
-    for el, t_a, t_b, t_c, force, factor, c, power, lost in columns:
+    for el, force, factor, c in zip(elements, np.asarray(forces, dtype=float).tolist(),
+                                    np.asarray(factors, dtype=float).tolist(),
+                                    np.asarray(pattern, dtype=int).reshape(-1).tolist()):
+        t_a, t_b, t_c = (coefficient * force for coefficient in element_stencil(el.ratio, factor))
+        power = -force * (speeds[el.body_a] - speeds[el.body_c])   # fed in by gear a
         torques: dict[str, float] = {el.body_a: 0.0 + t_a}
         torques[el.body_b] = torques.get(el.body_b, 0.0) + t_b
         if el.kind == "mesh" or factor != 1.0:  # an ideal coupling does not touch the frame
@@ -201,7 +193,10 @@ def _element_flows(elements: tuple[Element, ...], forces: np.ndarray, factors: n
             efficiency=el.efficiency, force=force, factor=factor,
             torques=MappingProxyType(torques),
             driver=el.a if c > 0 else (el.b if c < 0 else None),
-            carrier_frame_power=power, loss=lost))
+            # the power through the element in its carrier's frame, and its loss
+            # -(T_a (w_a - w_c) + T_b (w_b - w_c)) >= 0
+            carrier_frame_power=power if c > 0 else (-power * factor if c < 0 else 0.0),
+            loss=power * (1.0 - factor)))
     return tuple(out)
 
 
