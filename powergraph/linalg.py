@@ -28,8 +28,7 @@ The dense path (small systems) is :mod:`powergraph.linalg_dense`, re-exported he
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -66,8 +65,7 @@ def use_sparse(n_unknown: int) -> bool:
     return n_unknown >= SPARSE_FROM
 
 
-@dataclass(frozen=True)
-class Triplets:
+class Triplets(NamedTuple):
     """A matrix as ``(row, column, value)`` triplets, duplicates summed, exact zeros
     dropped (so the structure is the structure of the physics).
 

@@ -16,7 +16,8 @@ LAPACK's ``getrf``/``getrs``, so the two paths agree to rounding.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from typing import NamedTuple
 
 import numpy as np
 
@@ -78,8 +79,7 @@ def dense_condition(matrix: np.ndarray) -> float:
 
 
 
-@dataclass(frozen=True)
-class Solved:
+class Solved(NamedTuple):
     """A square system's solution and the condition number of its scaled system (for a
     small dense system, a bound of it on the same side of :data:`COND_LIMIT`:
     :func:`dense_condition`)."""

@@ -48,9 +48,8 @@ from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar
 
 from powergraph.errors import ModelError
+from powergraph.model.schema_parts import NON_NEGATIVE, POSITIVE
 from powergraph.model.units import parse_quantity
-
-POSITIVE, NON_NEGATIVE = "positive", "non-negative"
 
 
 def _length(doc: str, symbol: str, minimum: str = POSITIVE) -> Any:

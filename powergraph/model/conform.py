@@ -26,7 +26,7 @@ import re
 from typing import Any, Callable
 
 from powergraph.errors import ModelError
-from powergraph.model.schema import MODEL_SCHEMA, definition
+from powergraph.model.schema import definition, document_schema
 from powergraph.model.units import SI_UNITS, parse_quantity
 from powergraph.model.yaml_loader import brief, join_path
 
@@ -51,16 +51,29 @@ def conform(value: Any, schema: dict, path: str = "") -> None:
 
 
 def _checker(schema: dict) -> Callable[[Any, str], None]:
-    """The check of ``schema``, compiled once into a closure (cached by identity)."""
+    """The check of ``schema``, compiled once into a closure (cached by identity); a
+    ``$ref`` is compiled when a document first reaches it."""
     hit = _CHECKERS.get(id(schema))
     if hit is not None and hit[0] is schema:
         return hit[1]
-    check = _compile(_resolve(schema))
+    check = _later(schema) if "$ref" in schema else _compile(schema)
     _CHECKERS[id(schema)] = (schema, check)
     return check
 
 
 _CHECKERS: dict[int, tuple[dict, Callable[[Any, str], None]]] = {}
+
+
+def _later(schema: dict) -> Callable[[Any, str], None]:
+    """The check of a ``$ref``, compiled on its first use."""
+    compiled: list = []
+
+    def check(value: Any, path: str) -> None:
+        if not compiled:
+            compiled.append(_compile(_resolve(schema)))
+        compiled[0](value, path)
+
+    return check
 
 
 def _compile(schema: dict) -> Callable[[Any, str], None]:
@@ -312,4 +325,4 @@ def check_document(data: Any, source: str | None = None) -> None:
     if not isinstance(data, dict):
         raise ModelError("a model must be a mapping with name, components, links and ports; "
                          f"got {type(data).__name__}", source)
-    conform(data, MODEL_SCHEMA, "")
+    conform(data, document_schema(), "")

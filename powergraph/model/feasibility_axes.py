@@ -14,8 +14,7 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
@@ -24,8 +23,7 @@ from powergraph.gears import planetary
 CENTRE_TOLERANCE = 2e-4
 
 
-@dataclass(frozen=True)
-class _Centre:
+class _Centre(NamedTuple):
     """One central mesh of a planet: its centre distance in half-modules (one module, no
     shift) and in mm when a module is known (working, with the mesh's shifts)."""
 

@@ -8,6 +8,10 @@ rigid bodies, the block-specific geometry rules) is checked in code by
 :mod:`powergraph.model.validate` and the ``block_*`` modules. The format is explained in
 docs/format.md.
 
+The whole schema is :data:`MODEL_SCHEMA` (or :func:`model_schema`); the checks read it
+through :func:`document_schema` and :func:`definition`, which write the ``geometry``
+definition (from the shapes' own fields) only when a model has a geometry block.
+
 Two annotations beyond JSON Schema, which editors ignore:
 
 - ``x-quantity``: a physical quantity (``speed``, ``power``, ``torque``, ``length``): a
@@ -17,16 +21,15 @@ Two annotations beyond JSON Schema, which editors ignore:
 
 Examples
 --------
->>> MODEL_SCHEMA["$schema"]
+>>> model_schema()["$schema"]
 'https://json-schema.org/draft/2020-12/schema'
->>> sorted(MODEL_SCHEMA["required"])
+>>> sorted(model_schema()["required"])
 ['components', 'links', 'name', 'ports']
 """
 from __future__ import annotations
 
 from typing import Any
 
-from powergraph.model.block_geometry import SHAPES
 from powergraph.model.schema_losses import (_BEARING_FRICTION, _CRANK_BEARING, _DRAG,
                                             _FRICTION, _MESH_GEOMETRY, _OUTPUT_PINS, _PINS)
 from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_SPEED,
@@ -196,7 +199,7 @@ _PORT = {
     "required": ["component", "role"],
 }
 
-MODEL_SCHEMA: dict[str, Any] = {
+_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
     "title": "powergraph model",
     "description": "A gear train as a graph: components (nodes), links (edges) and ports. "
@@ -244,10 +247,7 @@ MODEL_SCHEMA: dict[str, Any] = {
                         "title": "component id",
                         "description": "A key of components (an integer or a string)."},
         "component": _COMPONENT,
-        "geometry": {"title": "geometry",
-                     "description": "Dimensions for the volume formulas of Pan & Wang "
-                                    "(2019), by shape (docs/volume.md). Lengths in mm.",
-                     "oneOf": [_geometry_shape(cls) for cls in SHAPES.values()]},
+        "geometry": None,          # written on first use (_LATER)
         "link": {"title": "link", "description": "An edge of the graph, by its type.",
                  "oneOf": [
                      _link("mesh", "Two gears in mesh, their axes fixed on the carrier.",
@@ -279,10 +279,48 @@ MODEL_SCHEMA: dict[str, Any] = {
 }
 
 
+def _geometry() -> dict:
+    """The ``geometry`` definition, written from the shapes' fields (their module is
+    imported only when a model has a geometry block, or the whole schema is asked for)."""
+    from powergraph.model.block_geometry import SHAPES
+
+    return {"title": "geometry",
+            "description": "Dimensions for the volume formulas of Pan & Wang (2019), by "
+                           "shape (docs/volume.md). Lengths in mm.",
+            "oneOf": [_geometry_shape(cls) for cls in SHAPES.values()]}
+
+
+#: Definitions written on first use, by name.
+_LATER = {"geometry": _geometry}
+
+
 def definition(name: str) -> dict:
     """The schema of ``$defs/name`` (``"geometry"``, ``"link"``...).
 
     >>> definition("cycloid")["required"]
     ['module', 'profile_error']
     """
-    return MODEL_SCHEMA["$defs"][name]
+    defs = _SCHEMA["$defs"]
+    if defs[name] is None:
+        defs[name] = _LATER[name]()
+    return defs[name]
+
+
+def document_schema() -> dict:
+    """The schema of a model document as the checks read it: its definitions are looked
+    up (:func:`definition`) when a document uses them."""
+    return _SCHEMA
+
+
+def model_schema() -> dict:
+    """The whole schema, every definition written out (``powergraph schema``,
+    :data:`MODEL_SCHEMA`)."""
+    for name in _LATER:
+        definition(name)
+    return _SCHEMA
+
+
+def __getattr__(name: str) -> Any:
+    if name == "MODEL_SCHEMA":     # the whole schema, as a module attribute
+        return model_schema()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

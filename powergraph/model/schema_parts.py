@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import fields
 from typing import Any
 
-from powergraph.model.block_geometry import NON_NEGATIVE
+#: The lower bound of a geometry length (block_geometry's fields say which).
+POSITIVE, NON_NEGATIVE = "positive", "non-negative"
 
 #: Largest magnitudes accepted, so that products of model numbers stay finite.
 MAX_SPEED = 1e6        # rad/s (about 10^7 rpm)

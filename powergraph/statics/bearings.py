@@ -216,7 +216,7 @@ def with_extra_torques(loads: Loads, extra: Mapping[str, float]) -> Loads:
     given = dict(loads.given)
     for body, torque in extra.items():
         given[body] = given.get(body, 0.0) + torque
-    return dataclasses.replace(loads, given=given)
+    return loads._replace(given=given)
 
 
 def with_bearings(model: Model, result: Any, states: tuple[BearingState, ...],

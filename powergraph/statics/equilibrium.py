@@ -7,9 +7,8 @@ drives). Each body's element torques plus its external torque sum to zero. Unkno
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
-from typing import Mapping
+from typing import Mapping, NamedTuple
 
 import numpy as np
 
@@ -31,8 +30,7 @@ from powergraph.linalg import (
 from powergraph.model.spec import Model
 
 
-@dataclass(frozen=True)
-class Loads:
+class Loads(NamedTuple):
     """External torques known before the solve: ``{body id: N·m}`` plus which are unknown."""
 
     given: dict[str, float]
@@ -70,8 +68,7 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
                  needed=len(model.ports) - kin.dof)
 
 
-@dataclass(frozen=True)
-class Equilibrium:
+class Equilibrium(NamedTuple):
     """Solution of the torque balance for one set of factors."""
 
     forces: np.ndarray           # λ per element
@@ -139,8 +136,7 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     return np.array([power / w if w > 0 else 0.0 for w in rel], dtype=float)
 
 
-@dataclass(frozen=True)
-class _Layout:
+class _Layout(NamedTuple):
     """Where the torque balance's entries go, sorted by row then column (the order of
     :class:`Triplets`): what :func:`_solve_small` needs besides the factors."""
 

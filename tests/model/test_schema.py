@@ -183,3 +183,17 @@ def test_unknown_field_message_lists_the_fields_allowed_there() -> None:
     assert info.value.path == "links[2].carrier"
     assert re.fullmatch(r"unknown field \(allowed: between, name, note, type\)",
                         info.value.message)
+
+
+def test_a_model_without_geometry_reads_no_geometry_schema() -> None:
+    """Start-up: the geometry definition (written from the shapes' dataclasses) is looked
+    up only by a model with a geometry block; the whole schema still holds it."""
+    import subprocess
+    import sys
+
+    code = ("import sys, powergraph as pg; pg.load_model('models/wolfrom_3k.yaml');"
+            "print('powergraph.model.block_geometry' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, check=True).stdout.split()
+    assert out == ["False"]
+    assert MODEL_SCHEMA["$defs"]["geometry"]["oneOf"]
