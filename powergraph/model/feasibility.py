@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -44,15 +43,18 @@ from powergraph.model.feasibility_axes import (coaxiality, gear_module, mesh_geo
                                                mesh_centre)
 
 
-@dataclass
 class PlanetarySet:
-    """The meshes on one carrier body, split into planets and central gears."""
+    """The meshes on one carrier body, split into planets and central gears (filled in
+    place while the links are read)."""
 
-    carrier: str
-    meshes: list = field(default_factory=list)
-    planets: set = field(default_factory=set)      # planet bodies
-    central: set = field(default_factory=set)      # central gear ids
-    by_body: dict = field(default_factory=dict)    # planet body -> its meshes in the set
+    __slots__ = ("carrier", "meshes", "planets", "central", "by_body")
+
+    def __init__(self, carrier: str) -> None:
+        self.carrier = carrier
+        self.meshes: list = []
+        self.planets: set = set()      # planet bodies
+        self.central: set = set()      # central gear ids
+        self.by_body: dict = {}        # planet body -> its meshes in the set
 
 
 def feasibility_caveats(model: Any) -> tuple[Caveat, ...]:

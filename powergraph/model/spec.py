@@ -201,6 +201,13 @@ class Model:
             link.type == "bearing" and link.blocks for link in self.links)
 
     @cached_property
+    def has_load_dependent_losses(self) -> bool:
+        """True when a mesh or bearing carries a ``friction:`` block, or a bearing or
+        component a ``drag:`` block: losses that the solve iterates on."""
+        return self.has_bearing_losses or any("friction" in link.blocks
+                                              for link in self.links)
+
+    @cached_property
     def inputs(self) -> tuple[Port, ...]:
         return tuple(p for p in self.ports if p.role == "input")
 

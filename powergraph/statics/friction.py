@@ -140,12 +140,6 @@ def loss_block_places(model: Model) -> list[str]:
     return places
 
 
-def needs_friction(model: Model) -> bool:
-    """True when a mesh or bearing of ``model`` carries a ``friction:`` block, or a
-    bearing or component a ``drag:`` block."""
-    return model.has_bearing_losses or any("friction" in link.blocks for link in model.links)
-
-
 @lru_cache(maxsize=1024)
 def _loss_factor(geometry: Any) -> float:
     from powergraph.gears.mesh_loss import mesh_loss  # only trains with friction

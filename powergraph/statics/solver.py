@@ -22,7 +22,6 @@ from powergraph.statics.directions import (
     settle,
 )
 from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
-from powergraph.statics.friction import needs_friction, solve_with_friction
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
 
 
@@ -73,7 +72,9 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
 
         return solve_machines(model, speeds, solve)
     elements = elements_of(model)
-    if extra_torques is None and needs_friction(model):
+    if extra_torques is None and model.has_load_dependent_losses:
+        from powergraph.statics.friction import solve_with_friction
+
         # the passes change efficiencies and bearing torques, never the motion: the speeds
         # are solved once for the operating point, the structure kept
         kin = solve_speeds(model, speeds, elements=elements)
