@@ -2,8 +2,9 @@
 
 A :class:`~powergraph.analyses.sweep.backends.ClosedForm` evaluated with numpy makes a
 pass over memory per operation (and the direction rule a dozen more per checked force
-system). Its kernel does, per variant and in one ``prange`` loop over the variants (every
-core), what :meth:`ClosedForm.evaluate` does: read the swept values, form the ratio
+system). Its kernel does, per variant, in blocks of variants whose loops the compiler
+vectorises, run on every core by threads (the kernel releases the GIL; numba's ``prange``
+doubled the compile time), what :meth:`ClosedForm.evaluate` does: read the swept values, form the ratio
 magnitudes from the teeth, compute the form's sympy expressions (common subexpressions
 eliminated, printed as Python), check the pattern — the speed system regular, the given
 torques' powers finite, then for each checked force system: regular, its forces finite,
