@@ -66,6 +66,28 @@ def relative_speed(w_a, w_b, w_c):
     return np.where(np.abs(rel) <= SPEED_NOISE * top, 0.0, rel)
 
 
+def relative_speed_point(w_a: float, w_b: float, w_c: float) -> float:
+    """:func:`relative_speed` of one element at one point, on floats: plain Python that a
+    compiler of scalar loops (the sweep's numba kernels) takes as it is; the same
+    operations in the same order, so the same number.
+
+    >>> relative_speed_point(1.0, 2.0, 0.5), relative_speed_point(1.0, 2.0, 1.0 - 1e-16)
+    (0.5, 0.0)
+    """
+    rel = w_a - w_c
+    top = nan_max(nan_max(abs(w_a), abs(w_b)), abs(w_c))
+    return 0.0 if abs(rel) <= SPEED_NOISE * top else rel
+
+
+def nan_max(a: float, b: float) -> float:
+    """``np.maximum`` on two floats (NaN when either is NaN), in plain Python.
+
+    >>> nan_max(1.0, 2.0), nan_max(float("nan"), 2.0), nan_max(2.0, float("nan"))
+    (2.0, nan, nan)
+    """
+    return a if (a >= b or a != a) else b
+
+
 def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
                  external: dict[str, float], frame_body: str) -> np.ndarray:
     """Per element, the largest sum of torque magnitudes on one of its own moving bodies.
@@ -248,6 +270,71 @@ def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
         return codes
     scales = own_scales(bodies, ratios, forces, factors, load, frame)
     return driver_codes(forces, rel, scales)
+
+
+def read_codes_loops(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
+                     factors: np.ndarray, rel: np.ndarray, load: np.ndarray, frame: int,
+                     out: np.ndarray) -> None:
+    """:func:`read_codes` as plain loops over floats, for finite forces: what a compiler
+    of loops (the sweep's numba kernels) takes as it is — one point or many at once, the
+    points innermost so that it vectorises. The same operations in the same order as
+    :func:`own_scales` and :func:`driver_codes`, so the same codes.
+
+    Parameters
+    ----------
+    bodies : (E, 3) int array
+        Each element's gear a, gear b and carrier as body columns.
+    ratios, forces, factors, rel : (E, P) float arrays
+        Willis ratio, force ``λ``, factor and relative speed of each element at each of
+        ``P`` points.
+    load : (B, P) float array
+        The magnitudes of the external torques on each body. **Overwritten**: on return
+        it holds every torque magnitude on each body (the elements' added).
+    frame : int
+        The frame's body column (-1 if none).
+    out : (E, P) int array
+        Receives the driver codes (+1 gear a drives, -1 gear b, 0 nothing passes; 0 also
+        where ``-λ (w_a - w_c)`` is NaN, which :func:`read_codes` leaves undefined).
+
+    Examples
+    --------
+    A pair on the frame (bodies 1, 2; frame 0), ratio -2, force 3, at two relative
+    speeds: gear a drives where ``-λ (w_a - w_c) > 0``.
+
+    >>> codes = np.zeros((1, 2), dtype=np.int8)
+    >>> read_codes_loops(np.array([[1, 2, 0]]), np.full((1, 2), -2.0), np.full((1, 2), 3.0),
+    ...                  np.ones((1, 2)), np.array([[-1.0, 1.0]]), np.zeros((3, 2)), 0, codes)
+    >>> codes.tolist()
+    [[1, -1]]
+    """
+    n_el, n_points = forces.shape
+    for column in range(3):
+        for k in range(n_el):
+            body = bodies[k, column]
+            for i in range(n_points):
+                c = element_stencil(ratios[k, i], factors[k, i])[column]
+                load[body, i] += abs(c * forces[k, i])
+    top = np.zeros(n_points)      # the largest load on any body (an element on the frame)
+    for body in range(load.shape[0]):
+        for i in range(n_points):
+            top[i] = nan_max(top[i], load[body, i])
+    for k in range(n_el):
+        a, b, c = bodies[k, 0], bodies[k, 1], bodies[k, 2]
+        for i in range(n_points):
+            own = -np.inf
+            if a != frame:
+                own = nan_max(own, load[a, i])
+            if b != frame:
+                own = nan_max(own, load[b, i])
+            if c != frame:
+                own = nan_max(own, load[c, i])
+            if not (own - own == 0.0):          # not finite (-inf: only the frame)
+                own = top[i]
+            power = -forces[k, i] * rel[k, i]
+            code = 1 if power > 0.0 else (-1 if power < 0.0 else 0)
+            if rel[k, i] == 0.0 or abs(forces[k, i]) <= FORCE_NOISE * own:
+                code = 0
+            out[k, i] = code
 
 
 def factor_of(code: int, efficiency):

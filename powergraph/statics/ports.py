@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, Iterable, Sequence
 import numpy as np
 
 from powergraph.errors import Caveat
+from powergraph.statics.directions import nan_max
 
 if TYPE_CHECKING:   # pragma: no cover
     from powergraph.statics.result import PowerFlowResult
@@ -133,6 +134,22 @@ def flow_efficiency_of_roles(input_power: np.ndarray, output_power: np.ndarray
     with np.errstate(divide="ignore", invalid="ignore"):
         eta = leaving / entering
     return np.where(entering > 0, eta, np.where(leaving > 0, np.inf, np.nan))
+
+
+def flow_efficiency_point(input_power: float, output_power: float) -> float:
+    """:func:`flow_efficiency_of_roles` of one variant, on floats: plain Python that a
+    compiler of scalar loops (the sweep's numba kernels) takes as it is, with the same
+    operations, so the same number.
+
+    >>> [flow_efficiency_point(p, q) for p, q in [(1.0, 0.9), (-1.0, -1.25), (0.0, 0.0)]]
+    [0.9, 0.8, nan]
+    """
+    p_in, p_out = input_power, -output_power
+    entering = nan_max(p_in, 0.0) + nan_max(p_out, 0.0)
+    leaving = nan_max(-p_in, 0.0) + nan_max(-p_out, 0.0)
+    if entering > 0.0:
+        return leaving / entering
+    return np.inf if leaving > 0.0 else np.nan
 
 
 def result_caveats(result: "PowerFlowResult") -> tuple[Caveat, ...]:

@@ -153,7 +153,20 @@ class ClosedForm:
                   for pattern in self._patterns]
         outputs = [det_k, scale_k, *speeds, *torques,
                    *[x for c in checks for x in (c[0], c[1], *c[2])]]
+        #: The arguments (ratio magnitudes, efficiencies, given speeds, loads: symbols per
+        #: element, speed and load) and the expressions the function computes, in order
+        #: (read again by :mod:`~powergraph.analyses.sweep.kernel`).
+        self.symbols = (tuple(backend.q), tuple(etas), tuple(backend.w), tuple(loads))
+        self.expressions = tuple(outputs)
         self._function = _lambdify(sp, [backend.q, etas, backend.w, loads], outputs)
+
+    @property
+    def checked(self) -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
+        """``(factor pattern, codes expected)`` of each force system :meth:`evaluate` checks,
+        in order: the ideal forces read ``start``, then (two passes) ``start``'s forces
+        read ``codes``, and the pattern's own forces read ``codes``."""
+        expected = [self.start] + [self.codes] * self.passes
+        return tuple(zip(self._patterns, expected))
 
     def evaluate(self, chunk: "Chunk", out: "Outputs") -> np.ndarray | bool:
         """Write the variants the pattern holds for into ``out``; return where it holds."""
@@ -170,8 +183,7 @@ class ClosedForm:
             valid = valid & np.isfinite(torque * speeds[load.body])
         rel = relative_speeds(lay, speeds)
         etas = [chunk.efficiencies[k] for k in self.moving]
-        expected = [self.start] + [self.codes] * self.passes
-        for pattern, codes in zip(self._patterns, expected):
+        for pattern, codes in self.checked:
             valid = valid & (next(values) > next(values))    # the force system regular
             forces = [next(values) for _ in range(lay.n_elements + len(lay.unknown))]
             factors = [factors_for(c, e) for c, e in zip(pattern, etas)]

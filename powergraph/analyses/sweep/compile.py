@@ -14,6 +14,7 @@ direction change stays fast.
 from __future__ import annotations
 
 import sys
+import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Mapping, NamedTuple, Sequence
@@ -30,6 +31,7 @@ from powergraph.model.spec import Model
 from powergraph.statics import PowerFlowResult, solve
 from powergraph.statics.equilibrium import loads_of, solve_equilibrium
 from powergraph.statics.friction import loss_block_places
+from powergraph.statics.ports import flow_efficiency_point
 
 #: Variants evaluated at once: small enough to keep the work arrays in cache (measured
 #: fastest on the RV benchmark among 8k, 12k, 16k, 24k, 32k and 64k).
@@ -39,6 +41,11 @@ PROGRESS_DELAY = 1.0
 BACKENDS = ("auto", "symbolic", "numeric")
 #: Most direction patterns compiled to closed forms per evaluator.
 MAX_CLOSED_FORMS = 4
+#: Runs of at least this many variants go through the closed forms' numba kernels
+#: (:mod:`~powergraph.analyses.sweep.kernel`) when numba imports; smaller ones, where a
+#: kernel's compile (about a second, once per process without the disk cache) would not
+#: pay, through numpy.
+KERNEL_MIN_VARIANTS = 1 << 16
 
 
 class Load(NamedTuple):
@@ -157,6 +164,7 @@ class CompiledSweep:
         self._element = {link: k for k, link in enumerate(self.layout.links)}
         self._moving = _moving(self.layout, self.parameters, self._base)
         self._closed_forms: list = []
+        self._kernels: dict = {}        # (start, codes) -> its numba Kernel (None: failed)
         if use_symbolic:
             pattern = _base_pattern(model, self._moving)
             if pattern is not None:
@@ -200,6 +208,22 @@ class CompiledSweep:
                 for path, a in arrays.items()}
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
+        rest = self._run_kernels(flat, outputs) if n >= KERNEL_MIN_VARIANTS else None
+        if rest is None:
+            self._run_chunks(flat, outputs, step, quiet)
+        elif rest.size:                       # the variants no kernel took
+            part = Outputs.empty(rest.size, self.layout.n_elements)
+            self._run_chunks({path: value[rest] if value.ndim else value
+                              for path, value in flat.items()}, part, step, quiet)
+            outputs.put(rest, part, slice(None))
+        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
+                              self.backend.name)
+
+    evaluate = __call__
+
+    def _run_chunks(self, flat: dict, outputs: Outputs, step: int, quiet: bool) -> None:
+        """Every variant of ``flat`` into ``outputs``, chunk by chunk, with numpy."""
+        n = outputs.status.size
         with _progress(n, step, quiet) as update:
             for start in range(0, n, step):
                 stop = min(n, start + step)
@@ -213,10 +237,53 @@ class CompiledSweep:
                     self._add_closed_form(*learned)
                 self._closed_forms.sort(key=lambda form: -form.hits)
                 update(stop - start)
-        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
-                              self.backend.name)
 
-    evaluate = __call__
+    def _run_kernels(self, flat: dict, outputs: Outputs) -> np.ndarray | None:
+        """The closed forms' numba kernels over every variant, written straight into
+        ``outputs`` (the first form's over all of them, each next one's over those left);
+        the indices of the variants none took, or None when no kernel ran (no numba, no
+        closed form yet, or a kernel that does not compile)."""
+        kernels = kernel_module()
+        if kernels is None or not self._closed_forms:
+            return None
+        rest = None          # the variants not taken yet (None: all)
+        swept = [flat[param.path] for param in self.parameters]
+        for form in list(self._closed_forms):
+            key = (form.start, form.codes)
+            try:
+                if key not in self._kernels:
+                    self._kernels[key] = kernels.Kernel(
+                        form, lambda scalar: self._input_lines(kernels, scalar))
+                if self._kernels[key] is None:
+                    return None
+                if rest is None:
+                    valid = self._kernels[key](swept, outputs)
+                    rest = np.flatnonzero(~valid)
+                    form.hits += outputs.status.size - rest.size
+                    continue
+                part = Outputs.empty(rest.size, self.layout.n_elements)
+                valid = self._kernels[key]([a[rest] if a.ndim else a for a in swept], part)
+            except Exception as error:        # numba's typing or lowering errors
+                warnings.warn(f"the sweep's numba kernel failed ({type(error).__name__}: "
+                              f"{error}); evaluating with numpy", RuntimeWarning, stacklevel=3)
+                self._kernels[key] = None
+                return None
+            outputs.put(rest[valid], part, valid)
+            form.hits += int(np.count_nonzero(valid))
+            rest = rest[~valid]
+            if rest.size == 0:
+                break
+        self._closed_forms.sort(key=lambda form: -form.hits)
+        return rest
+
+    def _input_lines(self, kernels, scalar: tuple[bool, ...]) -> list[str]:
+        return kernels.input_lines(self.layout, self.parameters, self._base, self._element,
+                                   self._speed_slot, self._load_slot, scalar)
+
+    @property
+    def kernel_compile_s(self) -> float:
+        """Seconds the numba kernels compiled (or loaded from the cache) so far."""
+        return sum(k.compile_s for k in self._kernels.values() if k is not None)
 
     def variant(self, values: Mapping[str, Any], index: int = 0) -> Model:
         """The model of one variant: ``self.model`` with the swept values of variant
@@ -413,8 +480,9 @@ def _base_pattern(model: Model, moving: tuple[int, ...]) -> tuple[int, ...] | No
 def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout) -> None:
     """The single solver's answer for variant ``j`` of ``out``."""
     out.ratio[j] = np.nan if result.ratio is None else result.ratio
-    out.efficiency[j] = result.efficiency
     out.input_power[j], out.output_power[j] = result.input_power, result.output_power
+    out.efficiency[j] = 0.0 if result.lock is not None else \
+        flow_efficiency_point(result.input_power, result.output_power)
     out.total_loss[j] = result.total_loss
     out.self_locking[j] = result.self_locking
     out.status[j] = LOCKED if result.lock is not None else OK
@@ -424,6 +492,17 @@ def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout)
         flow = by_link[link]
         out.losses[k, j] = flow.loss
         out.codes[k, j] = 0 if flow.driver is None else (1 if flow.driver == flow.a else -1)
+
+
+def kernel_module():
+    """:mod:`powergraph.analyses.sweep.kernel`, or None when numba does not import."""
+    try:
+        import numba  # noqa: F401
+
+        from powergraph.analyses.sweep import kernel
+    except ImportError:
+        return None
+    return kernel
 
 
 def _load_value(port, kind: str) -> float:

@@ -24,6 +24,7 @@ import numpy as np
 
 from powergraph.analyses.sweep.result import CYCLE, LOADS, OK, SPEEDS, UNSETTLED
 from powergraph.statics.directions import MAX_PASSES, factors_for, read_codes, relative_speed
+from powergraph.statics.ports import flow_efficiency_of_roles
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.compile import Layout
@@ -59,7 +60,7 @@ class Outputs:
     """Result arrays of a run, or views of a chunk of them."""
 
     ratio: np.ndarray
-    efficiency: np.ndarray
+    efficiency: np.ndarray    # as SweepResult.efficiency (flow efficiency; 0 where locked)
     input_power: np.ndarray
     output_power: np.ndarray
     total_loss: np.ndarray
@@ -393,19 +394,20 @@ def _outcome(layout: "Layout", state: _State, speeds: list, out: Outputs) -> Non
     out.input_power[:] = input_power
     out.output_power[:] = sum(external[b] * speeds[b] for b in layout.outputs)
     np.negative(out.output_power, out=out.output_power)
-    np.divide(out.output_power, out.input_power, out=out.efficiency)
+    formal = out.output_power / out.input_power
     if not np.all(input_power):
-        out.efficiency[out.input_power == 0] = np.nan
+        formal[out.input_power == 0] = np.nan
     _ratio(layout, speeds, out, all_ok)
     _losses_and_codes(layout, state, out)
     if not all_ok:
         bad = out.status != OK
-        for array in (out.efficiency, out.input_power, out.output_power, out.total_loss):
+        for array in (formal, out.input_power, out.output_power, out.total_loss):
             array[bad] = np.nan
         out.losses[:, bad] = np.nan
         out.codes[:, bad] = 0
         out.passes[bad] = 0
-    np.less_equal(out.efficiency, 0.0, out=out.self_locking)
+    np.less_equal(formal, 0.0, out=out.self_locking)
+    out.efficiency[:] = flow_efficiency_of_roles(out.input_power, out.output_power)
 
 
 def _losses_and_codes(layout: "Layout", state: _State, out: Outputs) -> None:

@@ -9,7 +9,6 @@ from typing import Any, Mapping
 import numpy as np
 
 from powergraph.format import csv_header
-from powergraph.statics.ports import flow_efficiency_of_roles
 from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
 
 #: Status codes of a variant (``SweepResult.status``), by value.
@@ -110,16 +109,15 @@ class SweepResult(Displayed):
     def of(cls, name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
            outputs: Any, links: tuple[int, ...], backend: str) -> "SweepResult":
         """The result of a run from its swept ``arrays`` and its flat ``outputs``
-        (:class:`~powergraph.analyses.sweep.evaluate.Outputs`), shaped to ``shape``."""
+        (:class:`~powergraph.analyses.sweep.evaluate.Outputs`, whose ``efficiency`` is
+        already the flow efficiency reported here), shaped to ``shape``."""
         shaped = lambda a: a.reshape(shape)  # noqa: E731
         by_link = lambda rows: MappingProxyType(  # noqa: E731
             {link: shaped(rows[k]) for k, link in enumerate(links)})
         return cls(name=name, parameters=MappingProxyType(
                        {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
                    ratio=shaped(outputs.ratio),
-                   efficiency=shaped(np.where(  # a locked train stays at rest: 0, as solve
-                       outputs.status == LOCKED, 0.0,
-                       flow_efficiency_of_roles(outputs.input_power, outputs.output_power))),
+                   efficiency=shaped(outputs.efficiency),   # flow efficiency, 0 if locked
                    input_power=shaped(outputs.input_power),
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),

@@ -1,0 +1,137 @@
+"""The plain-loop forms of the direction rule (compiled by the sweep's numba kernels) equal
+the numpy forms every other evaluator uses, checked with hypothesis on random structures
+and values: forces at and below the round-off threshold, zero relative speeds, elements on
+the frame only, no frame (-1). Pure Python here: numba is not needed."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from powergraph.statics.directions import (FORCE_NOISE, nan_max, read_codes,  # noqa: E402
+                                           read_codes_loops, relative_speed,
+                                           relative_speed_point)
+from powergraph.statics.ports import (flow_efficiency_of_roles,  # noqa: E402
+                                      flow_efficiency_point)
+
+SETTINGS = settings(max_examples=300, deadline=None, derandomize=True,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+finite = st.floats(-1e3, 1e3, allow_nan=False, allow_infinity=False)
+#: A force: ordinary, zero, or near the round-off threshold of ordinary torques.
+force = st.one_of(finite, st.just(0.0),
+                  st.builds(lambda x, e: x * 10.0 ** -e, finite, st.sampled_from(
+                      [9, 10, 11, 12, 13])))
+#: A relative speed, often exactly zero.
+speed = st.one_of(finite, st.just(0.0), st.just(-0.0))
+
+
+@st.composite
+def direction_problems(draw):
+    """Bodies, ratios, forces, factors, relative speeds, loads (``(E, P)``) and frame."""
+    n_bodies = draw(st.integers(2, 6))
+    n_el = draw(st.integers(1, 4))
+    points = draw(st.integers(1, 4))
+    body = st.integers(0, n_bodies - 1)
+    bodies = np.array(draw(st.lists(st.tuples(body, body, body), min_size=n_el,
+                                    max_size=n_el)), dtype=np.int64)
+    frame = draw(st.one_of(st.just(-1), body))
+    grid = lambda strategy, rows: np.array(  # noqa: E731
+        draw(st.lists(st.lists(strategy, min_size=points, max_size=points),
+                      min_size=rows, max_size=rows)), dtype=float)
+    ratios = grid(st.one_of(finite, st.just(1.0)), n_el)
+    factors = grid(st.floats(0.05, 20.0), n_el)
+    forces = grid(force, n_el)
+    rel = grid(speed, n_el)
+    load = grid(st.one_of(st.just(0.0), st.floats(0.0, 1e3)), n_bodies)
+    return bodies, ratios, forces, factors, rel, load, frame
+
+
+def loops(bodies, ratios, forces, factors, rel, load, frame) -> np.ndarray:
+    out = np.full(forces.shape, 99, dtype=np.int8)
+    read_codes_loops(bodies, ratios, forces, factors, rel, load.copy(), frame, out)
+    return out
+
+
+@SETTINGS
+@given(direction_problems())
+def test_read_codes_loops_is_read_codes_at_every_point(problem) -> None:
+    bodies, ratios, forces, factors, rel, load, frame = problem
+    got = loops(*problem)
+    for p in range(forces.shape[1]):
+        expected = read_codes(bodies, ratios[:, p], forces[:, p], factors[:, p], rel[:, p],
+                              load[:, p], frame)
+        assert got[:, p].tolist() == expected.tolist()
+
+
+@pytest.mark.parametrize("t", np.linspace(0.98, 1.02, 41))
+def test_read_codes_loops_at_the_round_off_threshold(t: float) -> None:
+    """A pair on the frame with 1 N*m on gear a's body and a force of ``t`` times
+    FORCE_NOISE: it passes nothing while the force is at most FORCE_NOISE times the
+    largest torque on its bodies (1 + the force)."""
+    bodies = np.array([[1, 2, 0]])
+    force = t * FORCE_NOISE
+    args = (bodies, np.array([[-1.0]]), np.array([[force]]), np.array([[1.0]]),
+            np.array([[1.0]]), np.array([[0.0], [1.0], [0.0]]), 0)
+    expected = 0 if force <= FORCE_NOISE * (1.0 + force) else -1
+    assert loops(*args)[0, 0] == expected
+    assert read_codes(bodies, np.array([-1.0]), np.array([force]), np.array([1.0]),
+                      np.array([1.0]), np.array([0.0, 1.0, 0.0]), 0).tolist() == [expected]
+
+
+def test_an_element_only_on_the_frame_takes_the_largest_load() -> None:
+    """Every body of the element is the frame: its scale is the largest torque on any body
+    (own_scales' rule), so a force of 1e-11 against a 1 N*m load elsewhere is round-off."""
+    args = (np.array([[0, 0, 0], [1, 2, 0]]), np.array([[-1.0], [-1.0]]),
+            np.array([[1e-11], [1.0]]), np.ones((2, 1)), np.array([[1.0], [1.0]]),
+            np.array([[0.0], [1.0], [0.0]]), 0)
+    assert loops(*args)[:, 0].tolist() == [0, -1]
+
+
+values = st.one_of(finite, st.just(0.0), st.just(1.0), st.just(math.nan),
+                   st.just(math.inf), st.just(-math.inf), st.floats(-1e-300, 1e-300))
+
+
+@SETTINGS
+@given(values, values, values, st.floats(-1e-15, 1e-15))
+def test_relative_speed_point_is_relative_speed(w_a, w_b, w_c, nudge) -> None:
+    for c in (w_c, w_a * (1.0 + nudge) if math.isfinite(w_a) else w_c):
+        expected = float(relative_speed(np.array([w_a]), np.array([w_b]), np.array([c]))[0])
+        got = relative_speed_point(w_a, w_b, c)
+        assert got == expected or (math.isnan(got) and math.isnan(expected))
+
+
+@SETTINGS
+@given(values, values)
+def test_flow_efficiency_point_is_flow_efficiency_of_roles(p_in, p_out) -> None:
+    expected = float(flow_efficiency_of_roles(np.array([p_in]), np.array([p_out]))[0])
+    got = flow_efficiency_point(p_in, p_out)
+    assert got == expected or (math.isnan(got) and math.isnan(expected))
+
+
+@SETTINGS
+@given(values, values)
+def test_nan_max_is_np_maximum(a, b) -> None:
+    expected = float(np.maximum(a, b))
+    got = nan_max(a, b)
+    assert got == expected or (math.isnan(got) and math.isnan(expected))
+
+
+@pytest.mark.parametrize("above", [False, True])
+def test_a_force_exactly_at_the_threshold_passes_nothing(above: bool) -> None:
+    """Ratio 1 and factor 1 put no torque on the carrier (``i f - 1 = 0``); with gears a
+    and b on the frame, the element's own scale is the 1 N*m on its carrier's body alone,
+    so a force of exactly FORCE_NOISE is round-off and the next float up is not."""
+    force = FORCE_NOISE if not above else np.nextafter(FORCE_NOISE, 1.0)
+    args = (np.array([[0, 0, 1]]), np.array([[1.0]]), np.array([[force]]),
+            np.array([[1.0]]), np.array([[1.0]]), np.array([[0.0], [1.0]]), 0)
+    expected = -1 if above else 0
+    assert loops(*args)[0, 0] == expected
+    assert read_codes(np.array([[0, 0, 1]]), np.array([1.0]), np.array([force]),
+                      np.array([1.0]), np.array([1.0]), np.array([0.0, 1.0]), 0
+                      ).tolist() == [expected]
