@@ -335,14 +335,14 @@ def rank(t: Triplets) -> int:
 
 
 def unique_inverse(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``np.unique(key, return_inverse=True)`` of a 1-D integer array, by one stable sort
+    """``np.unique(key, return_inverse=True)`` of a 1-D integer array, by one sort
     (``np.unique`` imports ``numpy.ma`` on its first call: 10 ms of every start-up).
 
     >>> [a.tolist() for a in unique_inverse(np.array([5, 2, 5, 7]))]
     [[2, 5, 7], [1, 0, 1, 2]]
     """
     key = np.asarray(key).ravel()
-    order = np.argsort(key, kind="stable")
+    order = np.argsort(key)
     ordered = key[order]
     first = np.ones(ordered.size, dtype=bool)
     first[1:] = ordered[1:] != ordered[:-1]

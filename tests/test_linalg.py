@@ -67,3 +67,25 @@ def test_matching_finds_an_augmenting_path() -> None:
     t = Triplets.build([0, 0, 1], [0, 1, 0], [1.0, 1.0, 1.0], (2, 2))
     assert matching(t).tolist() == [1, 0]
 
+
+
+# --- set operations without numpy.ma: numpy's own functions are the expected values ----
+
+from hypothesis import given, strategies as st  # noqa: E402
+
+from powergraph.linalg import others, unique_inverse  # noqa: E402
+
+
+@given(st.lists(st.integers(-50, 50), max_size=60))
+def test_unique_inverse_is_numpys(keys: list[int]) -> None:
+    key = np.array(keys, dtype=np.int64)
+    values, inverse = unique_inverse(key)
+    expected_values, expected_inverse = np.unique(key, return_inverse=True)
+    assert values.tolist() == expected_values.tolist()
+    assert inverse.tolist() == expected_inverse.ravel().tolist()
+
+
+@given(st.integers(0, 40), st.data())
+def test_others_is_setdiff1d(n: int, data) -> None:
+    taken = data.draw(st.lists(st.integers(0, max(n - 1, 0)), max_size=n)) if n else []
+    assert others(n, taken).tolist() == np.setdiff1d(np.arange(n), taken).tolist()
