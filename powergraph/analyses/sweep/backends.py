@@ -29,7 +29,7 @@ from powergraph.linalg_batch import COND_LIMIT, solve_square_batch, structural_z
 from powergraph.statics.directions import factor_of, factors_for
 
 if TYPE_CHECKING:  # pragma: no cover
-    from powergraph.analyses.sweep.compile import Layout
+    from powergraph.analyses.sweep.layout import Layout
     from powergraph.analyses.sweep.evaluate import Chunk, Outputs
 
 #: Largest system solved symbolically; bigger ones use the numeric backend.

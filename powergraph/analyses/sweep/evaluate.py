@@ -27,7 +27,7 @@ from powergraph.statics.directions import MAX_PASSES, factors_for, read_codes, r
 from powergraph.statics.ports import flow_efficiency_of_roles
 
 if TYPE_CHECKING:  # pragma: no cover
-    from powergraph.analyses.sweep.compile import Layout
+    from powergraph.analyses.sweep.layout import Layout
 
 #: A pattern is worth a closed form when the general path settled this many variants on it.
 LEARN_AT_LEAST = 1024

@@ -46,7 +46,7 @@ from powergraph.statics.directions import FORCE_NOISE, SPEED_NOISE, factor_of  #
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.backends import ClosedForm
-    from powergraph.analyses.sweep.compile import Layout
+    from powergraph.analyses.sweep.layout import Layout
     from powergraph.analyses.sweep.evaluate import Outputs
 
 #: Variants per block: the loops over a block's variants are what the compiler vectorises,
