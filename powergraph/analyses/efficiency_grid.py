@@ -26,24 +26,23 @@ Examples
 """
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Any
 
 import numpy as np
 
 from powergraph.errors import SolveError
-from powergraph.gears.mesh_loss import iso14179_mu, mesh_loss, path_of_contact
 from powergraph.kinematics import element_stencil, elements_of, solve_speeds
+from powergraph.kinematics.elements import gear_torque
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.statics import solve
-from powergraph.statics.bearings import bearing_torque, relative_speed
+from powergraph.statics.bearings import (body_torques, bearing_torque, relative_speed,
+                                         tooth_force, torque_change)
 from powergraph.statics.directions import (driver_codes, factors_for, own_scales,
                                            relative_speeds)
 from powergraph.statics.equilibrium import loads_of
-from powergraph.statics.friction import MAX_PASSES, friction_meshes
+from powergraph.statics.friction import MAX_PASSES, friction_meshes, mesh_friction
 from powergraph.units_si import RAD_S_PER_RPM
 from powergraph.statics.ports import flow_efficiency_of_roles
 
@@ -133,16 +132,6 @@ def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
     if grid is None:
         return None
     return grid.iterate(TOLERANCE, MAX_PASSES)
-
-
-@lru_cache(maxsize=256)
-def _loss(geometry: Any) -> Any:
-    return mesh_loss(geometry)
-
-
-@lru_cache(maxsize=256)
-def _working_radius(geometry: Any) -> float:
-    return path_of_contact(geometry).working_radius_1 / 1000.0
 
 
 @dataclass(frozen=True)
@@ -241,8 +230,9 @@ class _Grid:
 
     def _efficiencies(self, eta: np.ndarray, factors: np.ndarray,
                       x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The friction meshes' efficiencies at the forces and speeds of ``x``, and where
-        every coefficient is in [0, 1) (elsewhere the single solve refuses it)."""
+        """The friction meshes' efficiencies at the forces and speeds of ``x``
+        (:func:`powergraph.statics.friction.mesh_friction`, the single solve's law), and
+        where every coefficient is in [0, 1) (elsewhere the single solve refuses it)."""
         new = eta.copy()
         valid = np.ones(x.shape[0], dtype=bool)
         for link, friction in self.frictions.items():
@@ -250,48 +240,40 @@ class _Grid:
                 continue
             k = self._column(link)
             el = self.elements[k]
-            radius = _working_radius(friction.geometry)
-            on_a, on_b, _ = element_stencil(el.ratio, factors[:, k])
-            torque_1 = (on_a if friction.gear_1 == el.a else on_b) * x[:, k]
-            instances = max(self.model.components[c].count for c in (el.a, el.b))
+            torque_1 = gear_torque(el.ratio, x[:, k], factors[:, k], friction.gear_1 == el.a)
             gear = self.row[self.model.body_of[friction.gear_1]]
-            carrier = self.row[el.body_c]
-            mu = iso14179_mu(np.abs(torque_1) / radius / instances, friction.face_width,
-                             np.abs(self.speeds[:, gear] - self.speeds[:, carrier]) * radius,
-                             friction.geometry, friction.viscosity, friction.roughness,
-                             friction.lubricant_factor)
+            relative = self.speeds[:, gear] - self.speeds[:, self.row[el.body_c]]
+            instances = max(self.model.components[c].count for c in (el.a, el.b))
+            _, _, mu, new[:, k] = mesh_friction(friction, torque_1, relative, instances)
             valid &= (mu >= 0.0) & (mu < 1.0)
-            new[:, k] = dataclasses.replace(_loss(friction.geometry), mu=mu).efficiency
         return new, valid
 
     def _bearing_torques(self, factors: np.ndarray, x: np.ndarray) -> np.ndarray:
         """``(P, B)`` the bearings' and drags' torques on the bodies (as
-        :func:`powergraph.statics.bearings.bearing_states`)."""
+        :func:`powergraph.statics.bearings.bearing_states`: the same tooth forces, law
+        and sense)."""
         torques = np.zeros((x.shape[0], len(self.row)))
         for spec in self.bearings:
             rel = relative_speed(self.speeds[:, spec["rows"][0]], self.speeds[:, spec["rows"][1]])
             load = np.zeros(x.shape[0])
             for k, on_a_side, radius, count in spec["meshes"]:
-                stencil = element_stencil(self.elements[k].ratio, factors[:, k])
-                load += np.abs(stencil[0 if on_a_side else 1] * x[:, k]) / radius / count
-            torque = bearing_torque(spec["count"], spec["friction"], spec["drag"], load,
-                                    rel)[2] * np.sign(rel)
-            torques[:, spec["rows"][0]] -= torque
-            torques[:, spec["rows"][1]] += torque
+                load += np.abs(tooth_force(self.elements[k].ratio, x[:, k], factors[:, k],
+                                           on_a_side, radius, count))
+            total = bearing_torque(spec["count"], spec["friction"], spec["drag"], load, rel)[2]
+            on_first, on_second = body_torques(total, rel)
+            torques[:, spec["rows"][0]] += on_first
+            torques[:, spec["rows"][1]] += on_second
         return torques
 
     def _moved(self, extra: np.ndarray, new: np.ndarray, rhs: np.ndarray,
                x: np.ndarray) -> np.ndarray:
-        """Largest change of a bearing torque relative to the largest torque acting (the
-        given torques with the bearings', the solved external torques, the new ones)."""
-        moved = np.max(np.abs(new - extra), axis=1, initial=0.0)
-        n_el = len(self.elements)
+        """The bearing iteration's convergence test on every point
+        (:func:`powergraph.statics.bearings.torque_change`): the torques acting are the
+        given ones with the bearings' and the solved external torques."""
         free = np.ones(len(self.row), dtype=bool)
         free[[self.row[b] for b in self.unknown]] = False
-        scale = np.maximum.reduce([np.max(np.abs(-rhs[:, free]), axis=1, initial=0.0),
-                                   np.max(np.abs(x[:, n_el:]), axis=1, initial=0.0),
-                                   np.max(np.abs(new), axis=1, initial=0.0)])
-        return np.where(moved > 0.0, moved / np.where(scale > 0.0, scale, 1.0), 0.0)
+        acting = np.concatenate([-rhs[:, free], x[:, len(self.elements):]], axis=1)
+        return torque_change(extra, new, acting)
 
     def _outputs(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
                  factors: np.ndarray, mask: np.ndarray) -> np.ndarray:

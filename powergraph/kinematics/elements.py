@@ -77,6 +77,19 @@ def element_stencil(ratio: Value, factor: Value | float = 1.0) -> tuple[float, V
     return 1.0, -scaled, scaled - 1.0
 
 
+def gear_torque(ratio: Value, force: Value, factor: Value | float = 1.0,
+                on_gear_a: bool = True) -> Value:
+    """The torque an element applies to its gear a (or gear b): that gear's entry of the
+    static column (:func:`element_stencil`) times the element's force ``λ``. Floats or
+    arrays of operating points.
+
+    >>> gear_torque(-2.5, 4.0), gear_torque(-2.5, 4.0, 0.98, on_gear_a=False)
+    (4.0, 9.8)
+    """
+    on_a, on_b, _ = element_stencil(ratio, factor)
+    return (on_a if on_gear_a else on_b) * force
+
+
 def willis_ratio(link: Link, model: Model) -> float:
     """Willis' quotient ``(w_a - w_c)/(w_b - w_c)`` of a mesh (docs/format.md).
 

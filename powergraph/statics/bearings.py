@@ -53,7 +53,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Mapping
 
-from powergraph.kinematics import element_stencil
+from powergraph.kinematics.elements import gear_torque
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.graph import unique_name
 from powergraph.model.spec import Model
@@ -89,9 +89,8 @@ class BearingState:
     @property
     def torques(self) -> Mapping[str, float]:
         """The torque applied to each of the two bodies (N·m)."""
-        sign = (self.relative_speed > 0) - (self.relative_speed < 0)
-        return MappingProxyType({self.bodies[0]: -self.torque * sign,
-                                 self.bodies[1]: self.torque * sign})
+        on_first, on_second = body_torques(self.torque, self.relative_speed)
+        return MappingProxyType({self.bodies[0]: on_first, self.bodies[1]: on_second})
 
     def to_dict(self, model: Model) -> dict[str, Any]:
         raw = model.raw_id
@@ -168,17 +167,53 @@ def _state(model: Model, result: Any, kind: str, link: int | None, between: tupl
                         torque=float(torque), loss=float(torque * abs(relative)), node=node)
 
 
+def body_torques(torque: Any, relative: Any) -> tuple[Any, Any]:
+    """A bearing's (or drag's) total torque ``torque`` (>= 0) as the torques on its two
+    bodies, opposing their relative rotation ``w_1 - w_2`` (floats or arrays).
+
+    >>> body_torques(2.0, -3.0)
+    (2.0, -2.0)
+    """
+    sign = np.sign(relative) if np.ndim(relative) else (relative > 0) - (relative < 0)
+    return -torque * sign + 0.0, torque * sign + 0.0
+
+
+def tooth_force(ratio: Any, force: Any, factor: Any, on_gear_a: bool, radius: float,
+                instances: int) -> Any:
+    """Signed tangential tooth force (N, per mesh instance) of a mesh on one of its gears:
+    the mesh's torque on the gear over its working pitch radius (m). Floats or arrays.
+
+    >>> tooth_force(-2.0, 10.0, 1.0, True, 0.05, 2)
+    100.0
+    """
+    return gear_torque(ratio, force, factor, on_gear_a) / radius / instances
+
+
 def tooth_forces(model: Model, result: Any, carried: str) -> list[float]:
     """Signed tangential tooth force (N, per mesh instance) on each gear of the carried
-    member's body: the mesh's torque on the gear over its working pitch radius."""
+    member's body (:func:`tooth_force`)."""
     forces = []
     for mesh, gear in load_meshes(model, carried):
         flow = result.element(mesh)
-        on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
-        torque = (on_a if gear == flow.a else on_b) * flow.force
         count = max(model.components[c].count for c in model.links[mesh].between)
-        forces.append(float(torque) / gear_radius(model, mesh, gear) / count)
+        forces.append(float(tooth_force(flow.ratio, flow.force, flow.factor, gear == flow.a,
+                                        gear_radius(model, mesh, gear), count)))
     return forces
+
+
+def torque_change(old: Any, new: Any, acting: Any) -> Any:
+    """The convergence test of the bearing iteration: the largest change of a bearing
+    torque between two passes (``old``, ``new``: torques per body, the last axis),
+    relative to the largest torque acting (``acting``: the given and solved external
+    torques, with the new bearing torques). One pass or an array of operating points.
+
+    >>> float(torque_change(np.array([1.0, 0.0]), np.array([1.5, 0.0]), np.array([10.0])))
+    0.05
+    """
+    moved = np.max(np.abs(new - old), axis=-1, initial=0.0)
+    scale = np.maximum(np.max(np.abs(acting), axis=-1, initial=0.0),
+                       np.max(np.abs(new), axis=-1, initial=0.0))
+    return np.where(moved > 0.0, moved / np.where(scale > 0.0, scale, 1.0), 0.0)
 
 
 def _radial_load(model: Model, result: Any, carried: str) -> float:

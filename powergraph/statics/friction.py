@@ -21,8 +21,10 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Callable, Mapping
 
-from powergraph.errors import SolveError
-from powergraph.kinematics.elements import element_stencil
+import numpy as np
+
+from powergraph.errors import ModelError, SolveError
+from powergraph.kinematics.elements import gear_torque
 from powergraph.model.spec import Model
 
 MAX_PASSES = 60
@@ -113,13 +115,17 @@ def solve_with_friction(model: Model,
 
 
 def _torque_change(old: Mapping[str, float], new: Mapping[str, float], result: Any) -> float:
-    """Largest change of a body's bearing torque, relative to the largest torque acting."""
-    moved = max((abs(new.get(b, 0.0) - old.get(b, 0.0)) for b in {*old, *new}), default=0.0)
-    if not moved:
+    """Largest change of a body's bearing torque, relative to the largest torque acting
+    (:func:`powergraph.statics.bearings.torque_change`)."""
+    if not old and not new:
         return 0.0
-    scale = max([abs(t) for t in result.external_torques.values()]
-                + [abs(t) for t in new.values()])
-    return moved / scale
+    from powergraph.statics.bearings import torque_change
+
+    bodies = list({*old, *new})
+    acting = list(result.external_torques.values())
+    return float(torque_change(np.array([old.get(b, 0.0) for b in bodies]),
+                               np.array([new.get(b, 0.0) for b in bodies]),
+                               np.array(acting, dtype=float)))
 
 
 def loss_block_places(model: Model) -> list[str]:
@@ -152,27 +158,52 @@ def _constant(friction: Any) -> tuple[float, float]:
     return friction.efficiency()
 
 
+def mesh_friction(friction: Any, torque_1: Any, relative: Any,
+                  instances: int) -> tuple[Any, Any, Any, Any]:
+    """The state of a friction mesh at the torque on its gear 1 (N·m, all instances) and
+    gear 1's speed relative to the carrier (rad/s): ``(tangential force per instance (N),
+    pitch-line speed (m/s), μ, η)``, ``η = 1 - μ·H_V``. Floats, or arrays of operating
+    points (the efficiency grid's): the one place the law is applied.
+
+    A float coefficient out of [0, 1) is refused (ModelError); with arrays the caller
+    checks it (a point that leaves the law's range is solved alone).
+    """
+    radius, h_v = _radius_and_loss_factor(friction)
+    force = abs(torque_1) / radius / instances
+    pitch_speed = abs(relative) * radius
+    if not friction.load_dependent:        # the same law, cached: it does not change
+        mu, eta = _constant(friction)
+        return force, pitch_speed, mu, eta
+    from powergraph.gears.mesh_loss import iso14179_mu  # only trains with friction
+
+    mu = iso14179_mu(force, friction.face_width, pitch_speed, friction.geometry,
+                     friction.viscosity, friction.roughness, friction.lubricant_factor)
+    if np.ndim(mu) == 0 and not 0.0 <= mu < 1.0:
+        raise ModelError(f"the friction coefficient must be in [0, 1), got {mu!r}")
+    return force, pitch_speed, mu, 1.0 - mu * h_v
+
+
+@lru_cache(maxsize=1024)
+def _radius_and_loss_factor(friction: Any) -> tuple[float, float]:
+    """Working pitch radius of gear 1 (m) and the loss factor H_V of a friction mesh
+    (a cycloid stage's pin ring: the disc's pitch circle and its own factor)."""
+    if friction.model == "cycloid":
+        return friction.pitch_radius / 1000.0, friction.loss_factor
+    from powergraph.gears.mesh_loss import path_of_contact  # only trains with friction
+
+    return path_of_contact(friction.geometry).working_radius_1 / 1000.0, \
+        _loss_factor(friction.geometry)
+
+
 def _state(model: Model, result: Any, friction: Any) -> MeshFrictionState:
     flow = result.element(friction.link)
     link = model.links[friction.link]
-    if friction.model == "cycloid":      # pin ring: constant, force at the disc's pitch circle
-        radius, h_v = friction.pitch_radius / 1000.0, friction.loss_factor
-    else:
-        from powergraph.gears.mesh_loss import path_of_contact  # only trains with friction
-
-        radius = path_of_contact(friction.geometry).working_radius_1 / 1000.0   # m
-        h_v = _loss_factor(friction.geometry)
     a, b = link.between
-    on_a, on_b, _ = element_stencil(flow.ratio, flow.factor)
-    torque_1 = (on_a if friction.gear_1 == a else on_b) * flow.force
-    instances = max(model.components[a].count, model.components[b].count)
+    torque_1 = gear_torque(flow.ratio, flow.force, flow.factor, friction.gear_1 == a)
     speeds = result.kinematics.body_speeds
     relative = speeds[model.body_of[friction.gear_1]] - speeds[model.body_of[link.carrier]]
-    force = abs(torque_1) / radius / instances
-    pitch_speed = abs(relative) * radius
-    if friction.load_dependent:
-        mu, eta = friction.efficiency(force, pitch_speed)
-    else:                                   # the same law, cached: it does not change
-        mu, eta = _constant(friction)
+    force, pitch_speed, mu, eta = mesh_friction(
+        friction, torque_1, relative, max(model.components[a].count, model.components[b].count))
+    h_v = _radius_and_loss_factor(friction)[1]
     return MeshFrictionState(link=friction.link, model=friction.model, tangential_force=force,
                              pitch_speed=pitch_speed, mu=mu, loss_factor=h_v, efficiency=eta)
