@@ -38,6 +38,20 @@ class Loads(NamedTuple):
     needed: int               # how many port loads the train takes: ports - DOF
 
 
+def port_torque(value, kind: str, role: str, speed):
+    """The external torque of a loaded port: its ``torque``, or from its ``power`` what an
+    input feeds in (``P/w``) or an output takes out (``-P/w``; docs/format.md). Floats,
+    arrays of operating points or sympy expressions: the one place the convention is
+    written.
+
+    >>> port_torque(100.0, "power", "input", 10.0), port_torque(100.0, "power", "output", 10.0)
+    (10.0, -10.0)
+    """
+    if kind == "torque":
+        return value
+    return value / speed if role == "input" else -value / speed
+
+
 def loads_of(model: Model, kin: Kinematics) -> Loads:
     """External torques from the ports' power/torque (sign conventions of docs/format.md).
 
@@ -61,7 +75,7 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
             raise StaticsError("a power is given but the component does not turn "
                                "(speed 0), so its torque is unknown; give a torque instead",
                                f"{port.path}.power")
-        given[body] = power / speed if port.role == "input" else -power / speed
+        given[body] = port_torque(power, "power", port.role, speed)
     unknown = [model.body_of[p.component] for p in model.ports
                if model.body_of[p.component] not in given]
     return Loads(given=given, unknown=tuple(unknown) + (model.frame_body,),

@@ -27,6 +27,7 @@ import numpy as np
 from powergraph.kinematics.elements import element_stencil
 from powergraph.linalg_batch import COND_LIMIT, solve_square_batch, structural_zeros
 from powergraph.statics.directions import factor_of, factors_for
+from powergraph.statics.equilibrium import port_torque
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.layout import Layout
@@ -212,11 +213,9 @@ def _factors(sp, n: int, moving, codes, etas) -> list:
 
 
 def _torque(load, value, speeds):
-    """External torque of a loaded port, as the single solver: ``P/w`` in, ``-P/w`` out."""
-    if load.kind == "torque":
-        return value
-    w = speeds[load.body]
-    return value / w if load.role == "input" else -value / w
+    """External torque of a loaded port, as the single solver
+    (:func:`powergraph.statics.equilibrium.port_torque`)."""
+    return port_torque(value, load.kind, load.role, speeds[load.body])
 
 
 def _balance(backend: SymbolicBackend, factors: list, torques: list) -> tuple:

@@ -24,6 +24,7 @@ import numpy as np
 
 from powergraph.analyses.sweep.result import CYCLE, LOADS, OK, SPEEDS, UNSETTLED
 from powergraph.statics.directions import MAX_PASSES, factors_for, read_codes, relative_speed
+from powergraph.statics.equilibrium import port_torque
 from powergraph.statics.ports import flow_efficiency_of_roles
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -211,17 +212,15 @@ def relative_speeds(layout: "Layout", speeds: list) -> list:
 
 
 def _given_torques(layout: "Layout", speeds: list, loads: list) -> tuple[list, np.ndarray]:
-    """External torque of each loaded port (``P/w`` in, ``-P/w`` out) and the largest
-    given port power (NaN where a torque is unknown)."""
+    """External torque of each loaded port
+    (:func:`powergraph.statics.equilibrium.port_torque`) and the largest given port power
+    (NaN where a torque is unknown)."""
     torques, scale = [], 1e-300
     for load, value in zip(layout.loads, loads):
         w = speeds[load.body]
-        if load.kind == "torque":
-            torque = value
-        else:
-            torque = value / w if load.role == "input" else -value / w
-            if not np.all(w):   # a power on a still port: its torque is unknown
-                torque = np.where(w == 0, np.nan, torque)
+        torque = port_torque(value, load.kind, load.role, w)
+        if load.kind != "torque" and not np.all(w):   # a power on a still port: unknown
+            torque = np.where(w == 0, np.nan, torque)
         torques.append(torque)
         scale = np.maximum(scale, np.abs(torque * w))
     return torques, scale
