@@ -6,9 +6,8 @@ mesh's (the loss torque reacts on the frame).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from operator import attrgetter
-from typing import Mapping, TypeVar
+from typing import Mapping, NamedTuple, TypeVar
 
 import numpy as np
 
@@ -18,8 +17,7 @@ from powergraph.model.spec import Link, Model
 Value = TypeVar("Value")
 
 
-@dataclass(frozen=True)
-class Element:
+class Element(NamedTuple):
     """One mesh or coupling, resolved to bodies.
 
     ``ratio`` is Willis' quotient ``(w_a - w_c)/(w_b - w_c)``; ``a``, ``b``, ``carrier``

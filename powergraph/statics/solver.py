@@ -87,7 +87,7 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
 def with_efficiencies(elements: tuple[Element, ...],
                       efficiencies: Mapping[int, float]) -> tuple[Element, ...]:
     """The elements with these efficiencies (by link index) in place of their own."""
-    return tuple(dataclasses.replace(el, efficiency=efficiencies[el.link])
+    return tuple(el._replace(efficiency=efficiencies[el.link])
                  if el.link in efficiencies else el for el in elements)
 
 
