@@ -67,15 +67,20 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 
 def command_named(argv: list[str] | None) -> str | None:
     """The command ``argv`` names (its first word that is not an option or the value of
-    ``--max-model-size``), or None.
+    ``--max-model-size``), or None (also when the program's own help is asked for first,
+    which lists every command).
 
     >>> command_named(["--max-model-size", "2M", "solve", "m.yaml"]), command_named(["-h"])
     ('solve', None)
+    >>> command_named(["--help", "solve"]), command_named(["solve", "--help"])
+    (None, 'solve')
     """
     words = iter(argv or ())
     for word in words:
         if word == "--max-model-size":
             next(words, None)
+        elif word in ("-h", "--help"):
+            return None
         elif not word.startswith("-"):
             return word if word in COMMANDS else None
     return None

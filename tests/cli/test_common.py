@@ -322,3 +322,17 @@ def test_json_on_stdout_stays_json_when_a_file_is_written(capsys, tmp_path) -> N
     out, err = capsys.readouterr()
     json.loads(out)
     assert err.strip() == f"wrote {target}"
+
+
+def test_the_programs_help_lists_every_command_and_a_commands_help_its_own(capsys) -> None:
+    """A command line registers only the command it names; the program's help, asked
+    for before any command, still lists them all."""
+    from powergraph.cli.main import COMMANDS
+
+    with pytest.raises(SystemExit):
+        main(["--help", "solve"])
+    listed = capsys.readouterr().out
+    assert all(name in listed for name in COMMANDS)
+    with pytest.raises(SystemExit):
+        main(["solve", "--help"])
+    assert "usage: powergraph solve" in capsys.readouterr().out
