@@ -178,6 +178,23 @@ def test_without_numba_the_sweep_uses_numpy(rv_sweep, kernels_always, monkeypatc
     assert_same(rv_sweep(values, quiet=True), without)
 
 
+def test_a_kernel_that_fails_warns_and_leaves_the_answer_to_numpy(rv_sweep, kernels_always,
+                                                                  monkeypatch) -> None:
+    """A kernel that cannot compile (numba's typing error, say) changes no number."""
+    values = rv_variants(200, seed=4)
+    expected = rv_sweep(values, quiet=True)
+    fresh = compile_sweep(load_model(RV), list(PATHS))
+
+    class Broken:
+        def __init__(self, *args, **kwargs) -> None:
+            raise TypeError("no typing for this")
+
+    monkeypatch.setattr(sweep_compile.kernel_module(), "Kernel", Broken)
+    with pytest.warns(sweep_compile.KernelFallbackWarning, match="TypeError"):
+        got = fresh(values, quiet=True)
+    assert_same(expected, got)
+
+
 def test_small_runs_and_solve_import_no_numba() -> None:
     code = ("import sys, numpy as np\nimport powergraph as pg\n"
             "from powergraph.model import load_model\n"

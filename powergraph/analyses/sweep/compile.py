@@ -46,6 +46,12 @@ MAX_CLOSED_FORMS = 4
 KERNEL_MIN_VARIANTS = 1 << 16
 
 
+class KernelFallbackWarning(UserWarning):
+    """A closed form's numba kernel did not compile or run: the sweep goes on with numpy
+    (the same answers, slower). Not a RuntimeWarning, which the command line turns into
+    an error about the numbers."""
+
+
 class CompiledSweep:
     """A model compiled into an evaluator over arrays of the swept values.
 
@@ -208,8 +214,9 @@ class CompiledSweep:
                 part = Outputs.empty(rest.size, self.layout.n_elements)
                 valid = self._kernels[key]([a[rest] if a.ndim else a for a in swept], part)
             except Exception as error:        # numba's typing or lowering errors
-                warnings.warn(f"the sweep's numba kernel failed ({type(error).__name__}: "
-                              f"{error}); evaluating with numpy", RuntimeWarning, stacklevel=3)
+                warnings.warn(KernelFallbackWarning(
+                    f"the sweep's numba kernel failed ({type(error).__name__}: {error}); "
+                    "evaluating with numpy"), stacklevel=3)
                 self._kernels[key] = None
                 return None
             outputs.put(rest[valid], part, valid)
