@@ -228,16 +228,24 @@ def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Patte
     """
     if len(forces) > PLAIN_UP_TO:
         return tuple(driver_codes(forces, rel, scales).tolist())
-    codes = []      # driver_codes on plain floats (a few elements)
-    for force, speed, scale in zip(np.asarray(forces, dtype=float).tolist(),
-                                   np.asarray(rel, dtype=float).tolist(),
-                                   np.asarray(scales, dtype=float).tolist()):
-        power = -force * speed
-        if speed == 0.0 or abs(force) <= FORCE_NOISE * scale or power == 0.0:
-            codes.append(0)
-        else:
-            codes.append(1 if power > 0.0 else -1)
-    return tuple(codes)
+    return tuple(driver_code(force, speed, scale)     # on plain floats (a few elements)
+                 for force, speed, scale in zip(np.asarray(forces, dtype=float).tolist(),
+                                                np.asarray(rel, dtype=float).tolist(),
+                                                np.asarray(scales, dtype=float).tolist()))
+
+
+def driver_code(force: float, rel: float, scale: float) -> int:
+    """:func:`driver_codes` of one element at one point, on floats: plain Python that the
+    single solve runs as it is and the sweep's numba kernels compile. 0 also where
+    ``-λ (w_a - w_c)`` is NaN (which :func:`driver_codes` leaves undefined).
+
+    >>> driver_code(-1.0, 2.0, 1.0), driver_code(1e-13, 2.0, 1.0), driver_code(1.0, 2.0, 1.0)
+    (1, 0, -1)
+    """
+    power = -force * rel
+    if rel == 0.0 or abs(force) <= FORCE_NOISE * scale:
+        return 0
+    return 1 if power > 0.0 else (-1 if power < 0.0 else 0)
 
 
 def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
@@ -330,11 +338,7 @@ def read_codes_loops(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
                 own = nan_max(own, load[c, i])
             if not (own - own == 0.0):          # not finite (-inf: only the frame)
                 own = top[i]
-            power = -forces[k, i] * rel[k, i]
-            code = 1 if power > 0.0 else (-1 if power < 0.0 else 0)
-            if rel[k, i] == 0.0 or abs(forces[k, i]) <= FORCE_NOISE * own:
-                code = 0
-            out[k, i] = code
+            out[k, i] = driver_code(forces[k, i], rel[k, i], own)
 
 
 def factor_of(code: int, efficiency):

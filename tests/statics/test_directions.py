@@ -37,3 +37,18 @@ def test_an_element_on_the_frame_alone_takes_the_largest_load() -> None:
     # the pair (stencil 1, 2, -3 times 3): 3 on gear 1, 6 on gear 2, 9 on the frame; its own
     # scale leaves the frame out (6); the other element's is the largest load, the frame's
     assert scales == [6.0, 9.0]
+
+
+@settings(max_examples=300, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), n_elements=st.integers(1, 6))
+def test_plain_patterns_equal_the_numpy_driver_codes(seed: int, n_elements: int) -> None:
+    """The single solve's pattern of a few elements (driver_code on floats) is
+    driver_codes' (numpy), forces at and around the noise of their scales included."""
+    from powergraph.statics.directions import FORCE_NOISE, driver_codes, pattern_of
+
+    rng = np.random.default_rng(seed)
+    scales = 10.0 ** rng.integers(-6, 6, n_elements)
+    forces = rng.choice([-1.0, 1.0], n_elements) * scales * rng.choice(
+        [FORCE_NOISE, FORCE_NOISE * (1 + 1e-15), 1e-3, 1.0, 0.0], n_elements)
+    rel = rng.normal(size=n_elements) * (rng.random(n_elements) < 0.8)
+    assert pattern_of(forces, rel, scales) == tuple(driver_codes(forces, rel, scales).tolist())

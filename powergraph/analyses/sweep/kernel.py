@@ -78,6 +78,7 @@ def _jit(function: Callable) -> Callable:
 #: The rules, compiled, under the names they call each other by (the generated kernels
 #: import the ``jit_`` names).
 nan_max = jit_nan_max = _jit(_directions.nan_max)
+driver_code = jit_driver_code = _jit(_directions.driver_code)
 element_stencil = jit_element_stencil = _jit(_elements.element_stencil)
 jit_relative_speed_point = _jit(_directions.relative_speed_point)
 jit_read_codes_loops = _jit(_directions.read_codes_loops)
