@@ -6,8 +6,10 @@
 
 (a) ``powergraph.analyses.sweep`` — the model compiled once (:func:`compile_sweep`);
 (b) :func:`closed_form` below — the same virtual-power physics, derived by hand;
-(b') the same closed form as a numba kernel (one ``prange`` loop over the variants, both
-     cores; skipped without numba), reported as ``compiled_vs_numba``;
+(b') the same closed form as numba kernels (one ``prange`` loop over the variants, both
+     cores; skipped without numba): one writing every array the sweep returns, reported
+     as ``compiled_vs_numba``, and one writing only the seven arrays of (b), reported as
+     ``compiled_vs_numba_seven``;
 (c) a Python loop of single solves (``powergraph.solve``) on ``--loop`` of them,
     extrapolated (each variant model is made by ``dataclasses.replace``, no validation,
     so the loop is as fast as it can be).
@@ -101,8 +103,9 @@ def closed_form(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, n
 
 def numba_closed_form():
     """:func:`closed_form` as one numba loop over the variants on every core (``prange``),
-    or None without numba: what a hand-written compiled kernel of the same outputs costs
-    (it checks no direction: the derivation above proves the pattern for these values)."""
+    or None without numba: what a hand-written compiled kernel of the same seven outputs
+    costs (it checks no direction: the derivation above proves the pattern for these
+    values)."""
     try:
         import numba
     except ImportError:
@@ -130,6 +133,49 @@ def numba_closed_form():
                out["loss_12"], out["loss_45"], out["total_loss"], flags["self_locking"],
                flags["valid"])
         return {**out, **flags}
+
+    return run
+
+
+def numba_sweep_outputs():
+    """The hand derivation as a numba kernel writing every array the sweep returns, or None
+    without numba: ratio, efficiency, input and output power, total loss, a loss and a
+    driver code per link (the coupling's loss 0 by derivation: an array of zeros never
+    written, as the sweep's), self-locking, status and passes (constants by derivation),
+    and the validity flag (standing for ``converged``)."""
+    try:
+        import numba
+    except ImportError:
+        return None
+
+    @numba.njit(parallel=True, cache=True)
+    def kernel(z1, z2, z4, z5, eta1, eta2, power, ratio, efficiency, input_power,
+               output_power, total_loss, losses, drivers, self_locking, passes, valid):
+        for j in numba.prange(len(z1)):
+            k = z2[j] / z1[j]
+            i = 1.0 + k * z5[j] / (z5[j] - z4[j])
+            eta = (1.0 + k * eta1[j] * z5[j] / (z5[j] - z4[j] * eta2[j])) / i
+            loss_12 = power * (1.0 - 1.0 / i) * (1.0 - eta1[j])
+            total = power * (1.0 - eta)
+            ratio[j], efficiency[j], total_loss[j] = i, eta, total
+            input_power[j], output_power[j] = power, power * eta
+            losses[0, j], losses[1, j] = loss_12, total - loss_12
+            drivers[0, j], drivers[1, j], drivers[2, j] = 1, -1, 1
+            self_locking[j] = eta <= 0.0
+            passes[j] = 1
+            valid[j] = z5[j] > z4[j]
+
+    def run(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, np.ndarray]:
+        n = len(z1)
+        out = {name: np.empty(n) for name in ("ratio", "efficiency", "input_power",
+                                               "output_power", "total_loss")}
+        out.update(losses=np.zeros((3, n)), drivers=np.empty((3, n), dtype=np.int8),
+                   self_locking=np.empty(n, dtype=bool), status=np.zeros(n, dtype=np.int8),
+                   passes=np.empty(n, dtype=np.int8), valid=np.empty(n, dtype=bool))
+        kernel(z1, z2, z4, z5, eta1, eta2, power, out["ratio"], out["efficiency"],
+               out["input_power"], out["output_power"], out["total_loss"], out["losses"],
+               out["drivers"], out["self_locking"], out["passes"], out["valid"])
+        return out
 
     return run
 
@@ -198,20 +244,24 @@ def measure(n: int, n_loop: int, repeat: int, seed: int) -> dict:
     args = [values[p] for p in PATHS]
     runs = {"compiled": lambda: evaluate(values, quiet=True),
             "closed": lambda: closed_form(*args)}
-    kernel = numba_closed_form()
+    kernel, kernel_all = numba_closed_form(), numba_sweep_outputs()
     if kernel is not None:
-        runs["numba"] = lambda: kernel(*args)
+        runs["numba_seven"] = lambda: kernel(*args)
+        runs["numba"] = lambda: kernel_all(*args)
     times, first = best_times(runs, repeat)
     swept, hand = evaluate(values, quiet=True), closed_form(*args)
     numba_row = {}
     if kernel is not None:
-        compiled_hand = kernel(*args)
+        seven, every = kernel(*args), kernel_all(*args)
+        every = {"loss_12": every["losses"][0], "loss_45": every["losses"][1], **every}
         numba_row = {
             "numba_per_s": round(n / times["numba"]),
             "compiled_vs_numba": round(times["compiled"] / times["numba"], 3),
+            "compiled_vs_numba_seven": round(times["compiled"] / times["numba_seven"], 3),
             "numba_s": round(times["numba"], 4), "numba_first_s": round(first["numba"], 4),
+            "numba_seven_s": round(times["numba_seven"], 4),
             "numba_max_abs_diff": float(max(
-                np.max(np.abs(compiled_hand[key] - hand[key])) for key in
+                np.max(np.abs(hands[key] - hand[key])) for hands in (seven, every) for key in
                 ("ratio", "efficiency", "loss_12", "loss_45", "total_loss")))}
     if not (np.all(hand["valid"]) and np.all(swept.converged)):
         raise SystemExit("a variant left the closed form's direction pattern")
@@ -243,7 +293,7 @@ def main() -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON line")
     parser.add_argument("--variants", type=int, default=10**6)
     parser.add_argument("--loop", type=int, default=1000, help="single solves timed")
-    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--repeat", type=int, default=15)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     row = measure(args.variants, args.loop, args.repeat, args.seed)

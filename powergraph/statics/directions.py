@@ -280,65 +280,29 @@ def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     return driver_codes(forces, rel, scales)
 
 
-def read_codes_loops(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
-                     factors: np.ndarray, rel: np.ndarray, load: np.ndarray, frame: int,
-                     out: np.ndarray) -> None:
-    """:func:`read_codes` as plain loops over floats, for finite forces: what a compiler
-    of loops (the sweep's numba kernels) takes as it is — one point or many at once, the
-    points innermost so that it vectorises. The same operations in the same order as
-    :func:`own_scales` and :func:`driver_codes`, so the same codes.
+#: Every own scale is at most the sum of all torque magnitudes on the train (external and
+#: the elements' own, :func:`element_load`) times this factor: the margin covers the
+#: rounding of sums of up to 10^6 terms in any order.
+SCALE_BOUND = 1.0 + 1e-9
 
-    Parameters
-    ----------
-    bodies : (E, 3) int array
-        Each element's gear a, gear b and carrier as body columns.
-    ratios, forces, factors, rel : (E, P) float arrays
-        Willis ratio, force ``λ``, factor and relative speed of each element at each of
-        ``P`` points.
-    load : (B, P) float array
-        The magnitudes of the external torques on each body. **Overwritten**: on return
-        it holds every torque magnitude on each body (the elements' added).
-    frame : int
-        The frame's body column (-1 if none).
-    out : (E, P) int array
-        Receives the driver codes (+1 gear a drives, -1 gear b, 0 nothing passes; 0 also
-        where ``-λ (w_a - w_c)`` is NaN, which :func:`read_codes` leaves undefined).
 
-    Examples
-    --------
-    A pair on the frame (bodies 1, 2; frame 0), ratio -2, force 3, at two relative
-    speeds: gear a drives where ``-λ (w_a - w_c) > 0``.
+def element_load(ratio: float, factor: float, force: float) -> float:
+    """The torque magnitudes an element puts on its gear a, gear b and carrier, summed
+    (the terms :func:`own_scales` adds to those bodies' loads), for one point on floats.
 
-    >>> codes = np.zeros((1, 2), dtype=np.int8)
-    >>> read_codes_loops(np.array([[1, 2, 0]]), np.full((1, 2), -2.0), np.full((1, 2), 3.0),
-    ...                  np.ones((1, 2)), np.array([[-1.0, 1.0]]), np.zeros((3, 2)), 0, codes)
-    >>> codes.tolist()
-    [[1, -1]]
+    An own scale is the load on one body, or the largest on any: at most
+    ``SCALE_BOUND * (Σ |external torques| + Σ element_load)``. Read on that bound,
+    :func:`driver_code` only ever says "nothing passes" more often: **where it names a
+    driver, or the relative speed is zero, its code is the own-scale rule's code** (the
+    force test is the only place the scale enters, and it is monotonic in the scale). The
+    sweep's numba kernels use this to read the directions of a variant in a few operations
+    per element, and leave the variants it cannot decide to the own-scale rule.
+
+    >>> element_load(-2.0, 1.0, 3.0)        # 3 on gear a, 6 on gear b, 9 on the carrier
+    18.0
     """
-    n_el, n_points = forces.shape
-    for column in range(3):
-        for k in range(n_el):
-            body = bodies[k, column]
-            for i in range(n_points):
-                c = element_stencil(ratios[k, i], factors[k, i])[column]
-                load[body, i] += abs(c * forces[k, i])
-    top = np.zeros(n_points)      # the largest load on any body (an element on the frame)
-    for body in range(load.shape[0]):
-        for i in range(n_points):
-            top[i] = nan_max(top[i], load[body, i])
-    for k in range(n_el):
-        a, b, c = bodies[k, 0], bodies[k, 1], bodies[k, 2]
-        for i in range(n_points):
-            own = -np.inf
-            if a != frame:
-                own = nan_max(own, load[a, i])
-            if b != frame:
-                own = nan_max(own, load[b, i])
-            if c != frame:
-                own = nan_max(own, load[c, i])
-            if not (own - own == 0.0):          # not finite (-inf: only the frame)
-                own = top[i]
-            out[k, i] = driver_code(forces[k, i], rel[k, i], own)
+    on_a, on_b, on_c = element_stencil(ratio, factor)
+    return abs(on_a * force) + abs(on_b * force) + abs(on_c * force)
 
 
 def factor_of(code: int, efficiency):

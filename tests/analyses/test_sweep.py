@@ -485,3 +485,26 @@ def test_benchmark_closed_form_equals_single_solves() -> None:
     # Wang (2021), Table 1: z = 12, 36, 39, 40 and η1 = η2 = 0.94
     assert bench.closed_form(12, 36, 39, 40, 0.94, 0.94)["efficiency"] == \
         pytest.approx(0.287376, abs=5e-7)
+
+
+@pytest.mark.parametrize("kind", ["teeth", "efficiency", "ratio", "speed", "power", "torque"])
+def test_check_values_refuses_exactly_what_value_allowed_refuses(kind) -> None:
+    """check_values (reductions: the numpy path's fast check) and value_allowed (the
+    per-value rule the kernels compile) agree on single values of every sort, at and
+    around each limit."""
+    from powergraph.analyses.sweep.paths import Parameter, check_values, value_allowed
+    from powergraph.model.schema_parts import (MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_TEETH,
+                                               MAX_TORQUE)
+
+    limit = {"teeth": MAX_TEETH, "ratio": MAX_RATIO, "speed": MAX_SPEED, "power": MAX_POWER,
+             "torque": MAX_TORQUE, "efficiency": 1.0}[kind]
+    candidates = [0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 12.0, 12.5, 1e-300, limit,
+                  np.nextafter(limit, np.inf), -limit, np.inf, -np.inf, np.nan]
+    param = Parameter(path=f"x.{kind}", kind=kind, targets=("x",))
+    for value in candidates:
+        try:
+            check_values(param, np.array([value]))
+            refused = False
+        except ModelError:
+            refused = True
+        assert refused == (not bool(value_allowed(kind, value))), (kind, value)

@@ -241,3 +241,68 @@ def test_a_learned_pattern_gets_its_own_kernel(kernels_always) -> None:
     expected = compile_sweep(model, list(values))(values, quiet=True)
     assert_same(first, expected)
     assert_same(second, expected)
+
+
+# --- what the kernels leave to numpy ----------------------------------------------------
+
+def chain(n: int, eta: float):
+    """``n`` gears on fixed axes in a row, input power 100 W at gear 1, each mesh of
+    efficiency ``eta``."""
+    from powergraph.model import loads_model
+
+    lines = ["name: chain", "components:", "  0: {role: frame}"]
+    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
+    lines += ["links:"] + [f"  - {{type: mesh, between: [{i}, {i + 1}]}}"
+                           for i in range(1, n)]
+    lines += ["ports:", "  - {component: 1, role: input, speed: 10, power: 100}",
+              f"  - {{component: {n}, role: output}}"]
+    return loads_model("\n".join(lines) + "\n").with_mesh_efficiency(eta)
+
+
+def test_codes_the_bound_cannot_decide_are_left_to_numpy(kernels_always) -> None:
+    """At η = 1e-6 per mesh the last mesh's force is 1e-12 of the first's: far above
+    round-off on its own bodies (it passes power, η^3 arrives), below 1e-10 of the whole
+    train's torques. The kernel reads its code on that bound, cannot decide it, and
+    takes no variant: numpy gives every one the single solve's answer."""
+    model = chain(4, 1e-6)
+    values = {"links.*.efficiency": np.full(300, 1e-6)}
+    compiled = compile_sweep(model, list(values))
+    result = compiled(values, quiet=True)
+    (kernel,) = [k for k in compiled._kernels.values() if k is not None]
+    out = sweep_compile.Outputs.empty(300, 3)
+    valid, rejected = kernel([values["links.*.efficiency"]], out)
+    assert rejected == 300 and not valid.any()
+    single = pg.solve(model)
+    assert single.efficiency == pytest.approx(1e-18, rel=1e-12)
+    np.testing.assert_allclose(result.efficiency, single.efficiency, rtol=1e-12)
+    assert np.all(result.status == 0)
+
+
+@pytest.mark.parametrize("bad, words", [
+    (("links.1.efficiency", 37, 1.5), "efficiency must be in (0, 1]; got 1.5"),
+    (("components.4.teeth", 5, 0), "teeth must be whole numbers >= 1"),
+    (("components.1.teeth", 9, 12.5), "teeth must be whole numbers >= 1"),
+    (("links.0.efficiency", 0, np.nan), "efficiency must be in (0, 1]; got nan")])
+def test_values_out_of_range_are_refused_as_without_kernels(bad, words,
+                                                             kernels_always) -> None:
+    """The kernels check the swept arrays' values themselves (no numpy pass before them):
+    a value out of range still raises, with the PATH and the message of the numpy path."""
+    path, index, value = bad
+    values = rv_variants(400)
+    values[path] = values[path].astype(float)
+    values[path][index] = value
+    messages = []
+    for least in (1, 10**18):
+        sweep_compile.KERNEL_MIN_VARIANTS = least
+        with pytest.raises(PowerGraphError, match=path.replace(".", r"\.")) as caught:
+            compile_sweep(load_model(RV), list(PATHS))(values, quiet=True)
+        messages.append(str(caught.value))
+    assert words in messages[0]
+    assert messages[0] == messages[1]
+
+
+def test_a_scalar_out_of_range_is_refused(rv_sweep, kernels_always) -> None:
+    values = rv_variants(300)
+    values["links.0.efficiency"] = 1.2
+    with pytest.raises(PowerGraphError, match=r"links\.0\.efficiency"):
+        rv_sweep(values, quiet=True)

@@ -23,7 +23,8 @@ import numpy as np
 from powergraph.analyses.sweep import backends
 from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.layout import Layout, base_values, layout_of
-from powergraph.analyses.sweep.paths import Parameter, broadcast_values, parse_paths
+from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_all,
+                                             check_values, parse_paths)
 from powergraph.analyses.sweep.result import CYCLE, LOCKED, OK, UNSETTLED, SweepResult
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
@@ -152,13 +153,23 @@ class CompiledSweep:
         ModelError
             A value out of range (named by its PATH).
         """
-        arrays, shape = broadcast_values(self.parameters, values)
+        kernels = n_kernel = None
+        arrays, shape = broadcast_values(self.parameters, values, check=False)
         n = int(np.prod(shape, dtype=np.int64))
+        if n >= KERNEL_MIN_VARIANTS and self._closed_forms:
+            kernels = kernel_module()
+        if kernels is None:
+            check_all(self.parameters, arrays)
+        else:    # the kernels check the arrays' values; the values given once, here
+            _check_scalars(self.parameters, arrays)
         flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
                 for path, a in arrays.items()}
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
-        rest = self._run_kernels(flat, outputs) if n >= KERNEL_MIN_VARIANTS else None
+        rest = None if kernels is None else self._run_kernels(kernels, flat, outputs)
+        if rest is None or rest.size:
+            if kernels is not None:   # a variant not taken may have a value not allowed
+                check_all(self.parameters, arrays)
         if rest is None:
             self._run_chunks(flat, outputs, step, quiet)
         elif rest.size:                       # the variants no kernel took
@@ -188,14 +199,11 @@ class CompiledSweep:
                 self._closed_forms.sort(key=lambda form: -form.hits)
                 update(stop - start)
 
-    def _run_kernels(self, flat: dict, outputs: Outputs) -> np.ndarray | None:
+    def _run_kernels(self, kernels, flat: dict, outputs: Outputs) -> np.ndarray | None:
         """The closed forms' numba kernels over every variant, written straight into
         ``outputs`` (the first form's over all of them, each next one's over those left);
         the indices of the variants none took, or None when no kernel ran (no numba, no
         closed form yet, or a kernel that does not compile)."""
-        kernels = kernel_module()
-        if kernels is None or not self._closed_forms:
-            return None
         rest = None          # the variants not taken yet (None: all)
         swept = [flat[param.path] for param in self.parameters]
         for form in list(self._closed_forms):
@@ -207,12 +215,15 @@ class CompiledSweep:
                 if self._kernels[key] is None:
                     return None
                 if rest is None:
-                    valid = self._kernels[key](swept, outputs)
-                    rest = np.flatnonzero(~valid)
+                    valid, rejected = self._kernels[key](swept, outputs)
+                    rest = np.flatnonzero(~valid) if rejected else np.empty(0, np.int64)
                     form.hits += outputs.status.size - rest.size
+                    if rest.size == 0:
+                        break
                     continue
                 part = Outputs.empty(rest.size, self.layout.n_elements)
-                valid = self._kernels[key]([a[rest] if a.ndim else a for a in swept], part)
+                valid, _ = self._kernels[key]([a[rest] if a.ndim else a for a in swept],
+                                              part)
             except Exception as error:        # numba's typing or lowering errors
                 warnings.warn(KernelFallbackWarning(
                     f"the sweep's numba kernel failed ({type(error).__name__}: {error}); "
@@ -227,9 +238,10 @@ class CompiledSweep:
         self._closed_forms.sort(key=lambda form: -form.hits)
         return rest
 
-    def _input_lines(self, kernels, scalar: tuple[bool, ...]) -> list[str]:
-        return kernels.input_lines(self.layout, self.parameters, self._base, self._element,
-                                   self._speed_slot, self._load_slot, scalar)
+    def _input_lines(self, kernels, scalar: tuple[bool, ...]) -> tuple[list, list]:
+        return (kernels.input_lines(self.layout, self.parameters, self._base, self._element,
+                                    self._speed_slot, self._load_slot, scalar),
+                kernels.allowed_checks(self.parameters, scalar))
 
     @property
     def kernel_compile_s(self) -> float:
@@ -341,6 +353,18 @@ def _base_pattern(model: Model, moving: tuple[int, ...]) -> tuple[int, ...] | No
     codes = [0 if e.driver is None else (1 if e.driver == e.a else -1)
              for e in result.elements]
     return tuple(codes[k] for k in moving)
+
+
+def _check_scalars(params: tuple[Parameter, ...], arrays: Mapping[str, np.ndarray]) -> None:
+    """Check the values given once for every variant (the kernels check the arrays'); one
+    out of range raises what checking every value in order raises."""
+    try:
+        for param in params:
+            if arrays[param.path].ndim == 0:
+                check_values(param, arrays[param.path])
+    except ModelError:
+        check_all(params, arrays)
+        raise
 
 
 def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout) -> None:

@@ -76,12 +76,18 @@ class Outputs:
             "self_locking", "status", "passes")
     DTYPES = {"self_locking": bool, "status": np.int8, "passes": np.int8}
 
+    #: Arrays that start zeroed (``ok``, no loss): the kernels write only where they are
+    #: not, and pages never written cost no time (the system hands out zeroed pages).
+    ZEROED = ("status",)
+
     @classmethod
     def empty(cls, n: int, n_el: int) -> "Outputs":
-        """Fresh arrays for ``n`` variants of a train with ``n_el`` elements."""
-        return cls(**{name: np.empty(n, dtype=cls.DTYPES.get(name, float))
+        """Fresh arrays for ``n`` variants of a train with ``n_el`` elements (``status``
+        and ``losses`` zeroed, the others not initialised)."""
+        new = lambda name: np.zeros if name in cls.ZEROED else np.empty  # noqa: E731
+        return cls(**{name: new(name)(n, dtype=cls.DTYPES.get(name, float))
                       for name in cls.ROWS},
-                   losses=np.empty((n_el, n)), codes=np.empty((n_el, n), dtype=np.int8))
+                   losses=np.zeros((n_el, n)), codes=np.empty((n_el, n), dtype=np.int8))
 
     def part(self, start: int, stop: int) -> "Outputs":
         """Views of the variants ``start:stop``."""

@@ -2,21 +2,28 @@
 
 A :class:`~powergraph.analyses.sweep.backends.ClosedForm` evaluated with numpy makes a
 pass over memory per operation (and the direction rule a dozen more per checked force
-system). Its kernel does, per variant, in blocks of variants whose loops the compiler
-vectorises, run on every core by threads (the kernel releases the GIL; numba's ``prange``
-doubled the compile time), what :meth:`ClosedForm.evaluate` does: read the swept values, form the ratio
-magnitudes from the teeth, compute the form's sympy expressions (common subexpressions
-eliminated, printed as Python), check the pattern — the speed system regular, the given
-torques' powers finite, then for each checked force system: regular, its forces finite,
-and the driver codes read by the single solver's rule equal the expected ones — and, for
-the variants it holds for, write every result of
-:class:`~powergraph.analyses.sweep.evaluate.Outputs` and a ``valid`` flag. The others are
-left to the numpy path, which gives them exactly today's answer.
+system). Its kernel is one loop over the variants, run on every core (numba's ``prange``:
+its threads, and the loop vectorised, since numba tells the compiler that the arrays of a
+parallel loop do not overlap). For each variant it does what :meth:`ClosedForm.evaluate`
+does: read the swept values and check they are allowed (:func:`~powergraph.analyses.sweep.
+paths.value_allowed`), form the ratio magnitudes from the teeth, compute the form's sympy
+expressions (common subexpressions eliminated, printed as Python), check the pattern — the
+speed system regular, the given torques' powers finite, then for each checked force
+system: regular, its forces finite, and the driver codes the single solver's rule reads
+equal the expected ones — and, where all of this holds, write every result of
+:class:`~powergraph.analyses.sweep.evaluate.Outputs` and a ``valid`` flag. The other
+variants are left to the numpy path, which gives them exactly today's answer.
+
+The driver codes are read on a bound of the elements' own scales
+(:func:`~powergraph.statics.directions.element_load`): a few operations per element
+instead of the own scales' scatter over bodies. Where the bound names a driver (or the
+relative speed is zero) its code is the own-scale rule's; a variant with a code the bound
+cannot decide is left to the numpy path like one whose pattern fails.
 
 The rules are not written again here: the direction rule, the zero relative speed, the
-element's stencil and the flow efficiency are the plain-Python per-point forms of
-:mod:`powergraph.statics.directions`, :mod:`powergraph.kinematics.elements` and
-:mod:`powergraph.statics.ports`, compiled by numba as they are.
+element's load, the flow efficiency and the allowed values are the plain-Python per-point
+forms of :mod:`powergraph.statics.directions`, :mod:`powergraph.statics.ports` and
+:mod:`powergraph.analyses.sweep.paths`, compiled by numba as they are.
 
 The generated source is written to a cache directory under a name that hashes it (and
 the sources of those rules and numba's version), imported from there and compiled with
@@ -27,40 +34,37 @@ from __future__ import annotations
 
 import hashlib
 import importlib.util
+import math
 import os
-import re
 import sys
+import threading
 import time
 import types
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Sequence
 
 import numba
 import numpy as np
 
+from powergraph.analyses.sweep import paths as _paths
 from powergraph.kinematics import elements as _elements
 from powergraph.statics import directions as _directions
 from powergraph.statics import ports as _ports
-from powergraph.statics.directions import FORCE_NOISE, SPEED_NOISE, factor_of  # noqa: F401
+from powergraph.statics.directions import SCALE_BOUND, factor_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.analyses.sweep.backends import ClosedForm
     from powergraph.analyses.sweep.layout import Layout
     from powergraph.analyses.sweep.evaluate import Outputs
+    from powergraph.analyses.sweep.paths import Parameter
 
-#: Variants per block: the loops over a block's variants are what the compiler vectorises,
-#: and its scratch arrays stay in the cache.
-BLOCK = 256
-#: Threads that run a kernel's blocks (the cores this process may use).
-THREADS = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
-    (os.cpu_count() or 1)
-#: A thread gets at least this many blocks (fewer variants run on the calling thread).
-MIN_BLOCKS_PER_THREAD = 16
 #: Environment variable naming the kernel cache directory ("" keeps kernels in memory).
 CACHE_ENV = "POWERGRAPH_CACHE_DIR"
 #: Array dtypes passed to a kernel as they are (others are converted to float64).
 PASSED_DTYPES = (np.dtype(np.float64), np.dtype(np.int64))
+#: One kernel runs at a time: each uses every core, and numba's fallback thread pool
+#: (``workqueue``, without OpenMP or TBB) must not be entered from two threads at once.
+_RUNNING = threading.Lock()
 
 
 def _jit(function: Callable) -> Callable:
@@ -77,19 +81,26 @@ def _jit(function: Callable) -> Callable:
 
 #: The rules, compiled, under the names they call each other by (the generated kernels
 #: import the ``jit_`` names).
+MAX_TEETH = _paths.MAX_TEETH
+MAX_RATIO = _paths.MAX_RATIO
+SPEED_NOISE, FORCE_NOISE = _directions.SPEED_NOISE, _directions.FORCE_NOISE
 nan_max = jit_nan_max = _jit(_directions.nan_max)
-driver_code = jit_driver_code = _jit(_directions.driver_code)
 element_stencil = jit_element_stencil = _jit(_elements.element_stencil)
+jit_driver_code = _jit(_directions.driver_code)
+jit_element_load = _jit(_directions.element_load)
 jit_relative_speed_point = _jit(_directions.relative_speed_point)
-jit_read_codes_loops = _jit(_directions.read_codes_loops)
 jit_flow_efficiency_point = _jit(_ports.flow_efficiency_point)
+#: The allowed swept values, by kind (:func:`~powergraph.analyses.sweep.paths.value_allowed`).
+ALLOWED = {"teeth": _jit(_paths.teeth_allowed), "efficiency": _jit(_paths.efficiency_allowed),
+           "ratio": _jit(_paths.ratio_allowed)}
+jit_port_value_allowed = _jit(_paths.port_value_allowed)
 
 
 def _rules_digest() -> str:
     """Hash of what a cached kernel compiled in: the rule modules, this generator and
     numba's version (a change to any gives new kernel files)."""
     digest = hashlib.sha256(numba.__version__.encode())
-    for module in (_elements, _directions, _ports, sys.modules[__name__]):
+    for module in (_elements, _directions, _ports, _paths, sys.modules[__name__]):
         digest.update(Path(module.__file__).read_bytes())
     return digest.hexdigest()
 
@@ -138,6 +149,25 @@ def input_lines(layout: "Layout", parameters: Sequence, base: Mapping,
             + [f"p{k} = {x}" for k, x in enumerate(loads)])
 
 
+def allowed_checks(parameters: Sequence["Parameter"], scalar: Sequence[bool]) -> list[str]:
+    """Source of the checks that variant ``j``'s swept values are allowed (the arrays'
+    values: the caller checks values given once for every variant itself)."""
+    checks = []
+    for i, param in enumerate(parameters):
+        if scalar[i]:
+            continue
+        if param.kind in ALLOWED:
+            checks.append(f"{param.kind}_allowed(v{i}[j])")
+        else:
+            limit = _paths._LIMITS.get(param.kind, math.inf)
+            checks.append(f"port_value_allowed(v{i}[j], {_number(limit)})")
+    return checks
+
+
+def _number(x: float) -> str:
+    return repr(float(x)) if math.isfinite(x) else ("math.inf" if x > 0 else "-math.inf")
+
+
 def expression_lines(form: "ClosedForm") -> list[str]:
     """``o{i} = ...``: the closed form's expressions as Python on floats, after common
     subexpression elimination (as its numpy function)."""
@@ -159,16 +189,17 @@ def _python(expression) -> str:
     return PythonCodePrinter({"standard": "python3"}).doprint(expression)
 
 
-def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str],
+def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str], allowed: list[str],
                   cache: bool) -> str:
-    """The Python source of the kernel of ``form`` (``inputs``: :func:`input_lines`).
+    """The Python source of the kernel of ``form`` (``inputs``: :func:`input_lines`,
+    ``allowed``: :func:`allowed_checks`).
 
-    Each block of variants goes through three steps, each vectorised by the compiler:
-    a loop over its variants computing the inputs, the expressions, the checks that need
-    no direction and, per checked force system, the forces, factors and loads; the rule
-    reading the driver codes of each checked system on the whole block; a loop comparing
-    them with the expected ones and writing the results. Every result is written;
-    ``valid`` tells where the pattern holds (the caller overwrites the others).
+    One loop over the variants, branch-free so that the compiler vectorises it: the
+    inputs, the expressions, then per checked force system its factors, the bound of its
+    own scales and the driver codes read on it; ``valid`` where every check holds and
+    every code is decided, and every result written (the caller overwrites the others)
+    but the zeros :class:`Outputs` starts with (status ``ok``, the ideal elements' losses).
+    The kernel returns how many variants are not valid.
     """
     import sympy as sp
 
@@ -176,58 +207,37 @@ def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str],
     n_el, n_b = lay.n_elements, lay.n_bodies
     speed = [f"o{2 + b}" for b in range(n_b)]
     torque = [f"o{2 + n_b + i}" for i in range(len(lay.loads))]
-    first = inputs + expression_lines(form)
-    first += [f"ratios[{k}, i] = {lay.signs[k]!r} * q{k}" for k in range(n_el)]
-    first += [f"rel[{k}, i] = relative_speed_point({speed[a]}, {speed[b]}, {speed[c]})"
-              for k, (a, b, c) in enumerate(lay.places)]
-    checks = ["o0 > o1"] + [f"math.isfinite({t} * {speed[load.body]})"
-                            for load, t in zip(lay.loads, torque)]
-    rules, same = [], []
+    body = inputs + expression_lines(form)
+    body += [f"r{k} = {lay.signs[k]!r} * q{k}" for k in range(n_el)]
+    body += [f"rel{k} = relative_speed_point({speed[a]}, {speed[b]}, {speed[c]})"
+             for k, (a, b, c) in enumerate(lay.places)]
+    checks = ["(o0 > o1)"] + [f"math.isfinite({t} * {speed[load.body]})"
+                              for load, t in zip(lay.loads, torque)] + allowed
     at = 2 + n_b + len(lay.loads)
     forces: list[str] = []
     for p, (pattern, expected) in enumerate(form.checked):
         forces = [f"o{at + 2 + i}" for i in range(n_el + len(lay.unknown))]
-        checks += [f"o{at} > o{at + 1}"] + [f"math.isfinite({f})" for f in forces]
+        checks += [f"(o{at} > o{at + 1})"] + [f"math.isfinite({f})" for f in forces]
         at += 2 + len(forces)
-        first += [f"lam[{p}, {k}, i] = {forces[k]}" for k in range(n_el)]
-        first += [f"fac[{p}, {k}, i] = {_python(factor_of(code, sp.Symbol(f'e{k}')))}"
-                  for k, code in zip(form.moving, pattern)]     # the others stay 1
-        for body in range(n_b):
-            terms = [f"abs({t})" for load, t in zip(lay.loads, torque) if load.body == body]
-            terms += [f"abs({forces[n_el + j]})" for j, b in enumerate(lay.unknown)
-                      if b == body]
-            first.append(f"load[{p}, {body}, i] = {' + '.join(['0.0'] + terms)}")
-        rules.append(f"read_codes_loops(bodies, ratios, lam[{p}], fac[{p}], rel, load[{p}], "
-                     f"{lay.frame}, read[{p}])")
-        same += [f"(read[{p}, {k}, i] == {code})" for k, code in zip(form.moving, expected)]
-    first.append(f"ok[i] = {' and '.join(f'({c})' for c in checks)}")
+        factors = {k: _python(factor_of(code, sp.Symbol(f"e{k}")))
+                   for k, code in zip(form.moving, pattern)}
+        body += [f"f{p}_{k} = {factors.get(k, '1.0')}" for k in range(n_el)]
+        loads = ([f"abs({t})" for t in torque] + [f"abs({f})" for f in forces[n_el:]]
+                 + [f"element_load(r{k}, f{p}_{k}, {forces[k]})" for k in range(n_el)])
+        body.append(f"u{p} = {SCALE_BOUND!r} * ({' + '.join(['0.0'] + loads)})")
+        body += [f"d{p}_{k} = driver_code({forces[k]}, rel{k}, u{p})" for k in range(n_el)]
+        checks += [f"(d{p}_{k} == {code})" if code else
+                   f"((rel{k} == 0.0) | ({forces[k]} == 0.0))"    # proves "nothing passes"
+                   for k, code in zip(form.moving, expected)]
     last = len(form.checked) - 1
-    stored = lambda name: re.sub(r"\bo(\d+)\b", r"o[\1, i]", name)  # noqa: E731
-    write = _write_lines(lay, form, [stored(x) for x in speed], [stored(x) for x in torque],
-                         [stored(x) for x in forces], last)
-    needed = sorted({int(x) for x in re.findall(r"o\[(\d+), i\]", "\n".join(write))})
-    first += [f"o[{i}, i] = o{i}" for i in needed]
-    write = [f"valid[j] = {' and '.join(['ok[i]'] + same)}"] + write
-    return _assemble(form, n_swept, len(form.expressions), [first, *rules, write], cache)
-
-
-def _assemble(form: "ClosedForm", n_swept: int, n_out: int, loops: list,
-              cache: bool) -> str:
-    """The module text: the header, then each loop over the block's variants (a list of
-    lines) or call (a string) in the block's body."""
-    lay = form.layout
-    text = HEADER.format(digest=RULES_DIGEST, cache=cache, block=BLOCK,
-                         arguments="".join(f"v{i}, " for i in range(n_swept)),
-                         n_el=lay.n_elements, n_b=lay.n_bodies, n_out=n_out,
-                         n_checked=len(form.checked))
-    pad = " " * 8
-    for loop in loops:
-        if isinstance(loop, str):
-            text += pad + loop + "\n"
-            continue
-        text += pad + "for i in range(m):\n" + pad + "    j = start + i\n"
-        text += "".join(pad + "    " + line + "\n" for line in loop)
-    return text
+    checks += [f"((d{last}_{k} != 0) | (rel{k} == 0.0))"          # the reported codes decided
+               for k in range(n_el) if k not in form.moving]
+    body.append(f"good = {' & '.join(checks)}")
+    body += ["valid[j] = good", "rejected += 0 if good else 1"]
+    body += _write_lines(lay, form, speed, torque, forces, last)
+    arguments = "".join(f"v{i}, " for i in range(n_swept))
+    return (HEADER.format(digest=RULES_DIGEST, cache=cache, arguments=arguments)
+            + "".join(" " * 8 + line + "\n" for line in body) + "    return rejected\n")
 
 
 def _write_lines(lay: "Layout", form: "ClosedForm", speed: list, torque: list,
@@ -249,15 +259,14 @@ def _write_lines(lay: "Layout", form: "ClosedForm", speed: list, torque: list,
     else:
         w_in, w_out = (speed[b] for b in lay.ratio_bodies)
         lines.append(f"ratio[j] = np.inf if {w_out} == 0.0 else {w_in} / {w_out}")
-    lines.append("total = 0.0")
+    total = ["0.0"]
     for k in range(lay.n_elements):
         if k in form.moving:
-            lines += [f"loss = lam[{last}, {k}, i] * rel[{k}, i] * (fac[{last}, {k}, i] - 1.0)",
-                      f"losses[{k}, j] = loss", "total = total + loss"]
-        else:
-            lines.append(f"losses[{k}, j] = 0.0")
-    lines += [f"codes[{k}, j] = read[{last}, {k}, i]" for k in range(lay.n_elements)]
-    return lines + ["total_loss[j] = total", "status[j] = 0", f"passes[j] = {form.passes}"]
+            lines.append(f"loss{k} = {forces[k]} * rel{k} * (f{last}_{k} - 1.0)")
+            lines.append(f"losses[{k}, j] = loss{k}")   # the others stay zero (Outputs)
+            total.append(f"loss{k}")
+    lines += [f"codes[{k}, j] = d{last}_{k}" for k in range(lay.n_elements)]
+    return lines + [f"total_loss[j] = {' + '.join(total)}", f"passes[j] = {form.passes}"]
 
 
 HEADER = '''"""A sweep kernel generated by powergraph.analyses.sweep.kernel (rules {digest})."""
@@ -267,26 +276,20 @@ import numba
 import numpy as np
 
 from powergraph.analyses.sweep.kernel import (
+    ALLOWED, jit_driver_code as driver_code, jit_element_load as element_load,
     jit_flow_efficiency_point as flow_efficiency_point,
-    jit_read_codes_loops as read_codes_loops,
+    jit_port_value_allowed as port_value_allowed,
     jit_relative_speed_point as relative_speed_point)
 
+efficiency_allowed, ratio_allowed, teeth_allowed = (
+    ALLOWED["efficiency"], ALLOWED["ratio"], ALLOWED["teeth"])
 
-@numba.njit(cache={cache}, error_model="numpy", nogil=True)
-def kernel(first, last, {arguments}bodies, valid, ratio, efficiency, input_power,
-           output_power, total_loss, self_locking, status, passes, losses, codes):
-    n = valid.shape[0]
-    o = np.zeros(({n_out}, {block}))
-    ratios = np.ones(({n_el}, {block}))
-    rel = np.zeros(({n_el}, {block}))
-    lam = np.zeros(({n_checked}, {n_el}, {block}))
-    fac = np.ones(({n_checked}, {n_el}, {block}))
-    load = np.zeros(({n_checked}, {n_b}, {block}))
-    read = np.zeros(({n_checked}, {n_el}, {block}), dtype=np.int8)
-    ok = np.zeros({block}, dtype=np.bool_)
-    for block in range(first, last):
-        start = block * {block}
-        m = min({block}, n - start)
+
+@numba.njit(cache={cache}, error_model="numpy", nogil=True, parallel=True)
+def kernel({arguments}valid, ratio, efficiency, input_power, output_power, total_loss,
+           self_locking, status, passes, losses, codes):
+    rejected = 0
+    for j in numba.prange(valid.shape[0]):
 '''
 
 
@@ -340,24 +343,26 @@ class Kernel:
 
     Calling it evaluates every variant: it writes results into ``outputs`` and returns
     ``valid``, where the form's pattern holds (the results elsewhere are to be
-    overwritten). ``compile_s`` is the time its compiles (or loads from the cache) took.
+    overwritten), and how many variants are not valid. ``compile_s`` is the time its
+    compiles (or loads from the cache) took.
 
     Parameters
     ----------
     form : ClosedForm
     inputs : callable
-        ``inputs(scalar)``: :func:`input_lines` for these swept values given as scalars
-        (a kernel is compiled per such mask: indexing a constant stride would keep the
-        compiler from vectorising).
+        ``inputs(scalar)``: :func:`input_lines` and :func:`allowed_checks` for these swept
+        values given as scalars (a kernel is compiled per such mask: indexing a constant
+        stride would keep the compiler from vectorising).
     """
 
-    def __init__(self, form: "ClosedForm", inputs: Callable[[tuple], list[str]]) -> None:
+    def __init__(self, form: "ClosedForm",
+                 inputs: Callable[[tuple], tuple[list[str], list[str]]]) -> None:
         self.form, self._inputs = form, inputs
         self._functions: dict[tuple, Callable] = {}
-        self._bodies = np.array(form.layout.places, dtype=np.int64).reshape(-1, 3)
         self.compile_s = 0.0
 
-    def __call__(self, swept: Sequence[np.ndarray], outputs: "Outputs") -> np.ndarray:
+    def __call__(self, swept: Sequence[np.ndarray],
+                 outputs: "Outputs") -> tuple[np.ndarray, int]:
         arguments = []
         for array in swept:
             array = np.asarray(array)
@@ -368,37 +373,21 @@ class Kernel:
         function = self._functions.get(scalar)
         if function is None:                  # generate, compile on one variant, timed
             begin = time.perf_counter()
-            lines = self._inputs(scalar)
-            function = _load(lambda cache: kernel_source(self.form, len(scalar), lines, cache))
+            lines, allowed = self._inputs(scalar)
+            function = _load(lambda cache: kernel_source(self.form, len(scalar), lines,
+                                                         allowed, cache))
             self._run(function, [a[:1] for a in arguments],
                       type(outputs).empty(1, self.form.layout.n_elements))
             self._functions[scalar] = function
             self.compile_s += time.perf_counter() - begin
         return self._run(function, arguments, outputs)
 
-    def _run(self, function: Callable, arguments: list, out: "Outputs") -> np.ndarray:
-        """Run the blocks of variants on every core (the kernel releases the GIL)."""
-        n = out.status.size
-        valid = np.empty(n, dtype=bool)
-        blocks = -(-n // BLOCK)
-        rest = [self._bodies, valid, out.ratio, out.efficiency, out.input_power,
-                out.output_power, out.total_loss, out.self_locking, out.status, out.passes,
-                out.losses, out.codes]
-        workers = min(THREADS, blocks // MIN_BLOCKS_PER_THREAD)
-        if workers <= 1:
-            function(0, blocks, *arguments, *rest)
-            return valid
-        cuts = [blocks * t // workers for t in range(workers + 1)]
-        list(_pool().map(lambda t: function(cuts[t], cuts[t + 1], *arguments, *rest),
-                         range(workers)))
-        return valid
-
-
-_POOL: list = []
-
-
-def _pool() -> ThreadPoolExecutor:
-    """The threads that run the kernels' blocks (made on first use)."""
-    if not _POOL:
-        _POOL.append(ThreadPoolExecutor(THREADS, thread_name_prefix="powergraph-kernel"))
-    return _POOL[0]
+    @staticmethod
+    def _run(function: Callable, arguments: list, out: "Outputs") -> tuple[np.ndarray, int]:
+        valid = np.empty(out.status.size, dtype=bool)
+        with _RUNNING:
+            rejected = function(*arguments, valid, out.ratio, out.efficiency,
+                                out.input_power, out.output_power, out.total_loss,
+                                out.self_locking, out.status, out.passes, out.losses,
+                                out.codes)
+        return valid, int(rejected)

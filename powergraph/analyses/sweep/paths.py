@@ -17,8 +17,8 @@ from powergraph.model.schema_parts import (MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_
 from powergraph.model.spec import Model
 
 __all__ = ["LINK_FIELDS", "PORT_FIELDS", "Parameter", "as_array", "broadcast_values",
-           "cartesian", "check_values", "parse_path", "parse_paths", "parse_set",
-           "parse_sets"]
+           "cartesian", "check_all", "check_values", "parse_path", "parse_paths", "parse_set",
+           "parse_sets", "value_allowed"]
 
 
 def parse_paths(model: Model, paths) -> tuple[Parameter, ...]:
@@ -104,9 +104,11 @@ def check_values(param: Parameter, array: np.ndarray) -> np.ndarray:
     return array
 
 
-def broadcast_values(params: Sequence[Parameter],
-                     values: Mapping[str, Any]) -> tuple[dict, tuple[int, ...]]:
+def broadcast_values(params: Sequence[Parameter], values: Mapping[str, Any],
+                     check: bool = True) -> tuple[dict, tuple[int, ...]]:
     """The checked arrays of exactly the PATHs of ``params``, and their broadcast shape.
+    With ``check`` False the values are not range-checked (the caller checks them with
+    :func:`check_values`, or proves them allowed by :func:`value_allowed`).
 
     Raises
     ------
@@ -126,7 +128,9 @@ def broadcast_values(params: Sequence[Parameter],
                          + (f"; missing {', '.join(missing)}" if missing else "")
                          + (f"; not compiled: {', '.join(map(str, unknown))}"
                             if unknown else ""))
-    arrays = {p.path: check_values(p, as_array(p, values[p.path])) for p in params}
+    arrays = {p.path: as_array(p, values[p.path]) for p in params}
+    if check:
+        check_all(params, arrays)
     try:
         shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
     except ValueError:
@@ -135,15 +139,56 @@ def broadcast_values(params: Sequence[Parameter],
     return arrays, shape
 
 
+def check_all(params: Sequence[Parameter], arrays: Mapping[str, np.ndarray]) -> None:
+    """:func:`check_values` on each parameter's array, in order (the first out of range
+    raises)."""
+    for param in params:
+        check_values(param, arrays[param.path])
+
+
 def _bad_values(kind: str, array: np.ndarray) -> np.ndarray:
-    finite = np.isfinite(array)
+    with np.errstate(invalid="ignore"):
+        return ~value_allowed(kind, array)
+
+
+def value_allowed(kind: str, value):
+    """Whether swept values of ``kind`` may go into a model: the one rule, for a float or an
+    array, that :func:`check_values` enforces (and the sweep's numba kernels compile, in
+    the per-kind functions below).
+
+    >>> value_allowed("teeth", np.array([12, 0, 12.5])).tolist()
+    [True, False, False]
+    >>> bool(value_allowed("efficiency", 1.0)), bool(value_allowed("speed", np.inf))
+    (True, False)
+    """
     if kind == "teeth":
-        return ~finite | (array < 1) | (array > MAX_TEETH) | (array != np.round(array))
+        return teeth_allowed(value)
     if kind == "efficiency":
-        return ~finite | (array <= 0) | (array > 1)
+        return efficiency_allowed(value)
     if kind == "ratio":
-        return ~finite | (array == 0) | (np.abs(array) > MAX_RATIO)
-    return ~finite | (np.abs(array) > _LIMITS.get(kind, np.inf))
+        return ratio_allowed(value)
+    return port_value_allowed(value, _LIMITS.get(kind, math.inf))
+
+
+def teeth_allowed(z):
+    """Whole tooth numbers from 1 to ``MAX_TEETH`` (operators that floats, arrays and
+    numba all take)."""
+    return (z >= 1) & (z <= MAX_TEETH) & (z == np.floor(z))
+
+
+def efficiency_allowed(e):
+    """Efficiencies in (0, 1]."""
+    return (e > 0) & (e <= 1)
+
+
+def ratio_allowed(r):
+    """Willis ratios that are numbers, non-zero and at most ``MAX_RATIO`` either way."""
+    return (r == r) & (r != 0) & (abs(r) <= MAX_RATIO)
+
+
+def port_value_allowed(x, limit: float):
+    """Finite speeds, powers and torques at most ``limit`` either way."""
+    return ((x - x) == 0) & (abs(x) <= limit)
 
 
 def _rule(kind: str) -> str:
