@@ -306,3 +306,26 @@ def test_a_scalar_out_of_range_is_refused(rv_sweep, kernels_always) -> None:
     values["links.0.efficiency"] = 1.2
     with pytest.raises(PowerGraphError, match=r"links\.0\.efficiency"):
         rv_sweep(values, quiet=True)
+
+
+def test_a_forked_process_runs_kernels_after_its_parent() -> None:
+    """The kernels' thread pool survives fork (GNU OpenMP, numba's default without TBB,
+    aborts such a child): a sweep, then two forked workers sweeping."""
+    code = ("import multiprocessing, numpy as np\n"
+            "from powergraph.analyses.sweep import compile as c, compile_sweep\n"
+            "from powergraph.model import load_model\n"
+            "c.KERNEL_MIN_VARIANTS = 1\n"
+            f"m = load_model({str(RV)!r})\n"
+            "values = {'links.1.efficiency': np.linspace(0.9, 1.0, 500)}\n"
+            "def run(_):\n"
+            "    s = compile_sweep(m, list(values))\n"
+            "    r = s(values, quiet=True)\n"
+            "    assert s.kernel_compile_s > 0\n"
+            "    return float(r.efficiency[0])\n"
+            "first = run(0)\n"
+            "with multiprocessing.get_context('fork').Pool(2) as pool:\n"
+            "    print(pool.map(run, [1, 2]) == [first, first])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "True"

@@ -62,9 +62,15 @@ if TYPE_CHECKING:  # pragma: no cover
 CACHE_ENV = "POWERGRAPH_CACHE_DIR"
 #: Array dtypes passed to a kernel as they are (others are converted to float64).
 PASSED_DTYPES = (np.dtype(np.float64), np.dtype(np.int64))
-#: One kernel runs at a time: each uses every core, and numba's fallback thread pool
-#: (``workqueue``, without OpenMP or TBB) must not be entered from two threads at once.
+#: One kernel runs at a time: each uses every core, and numba's own thread pool
+#: (``workqueue``) must not be entered from two threads at once.
 _RUNNING = threading.Lock()
+#: The thread pool of the kernels' ``prange``: one that survives ``fork`` (TBB, else
+#: numba's ``workqueue``): GNU OpenMP, numba's default where TBB is missing, aborts a
+#: forked child that runs a kernel after its parent did. A choice made with
+#: ``NUMBA_THREADING_LAYER`` is kept.
+if "NUMBA_THREADING_LAYER" not in os.environ:
+    numba.config.THREADING_LAYER = "forksafe"
 
 
 def _jit(function: Callable) -> Callable:
