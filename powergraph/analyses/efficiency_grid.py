@@ -5,8 +5,8 @@ efficiency map its own fixed point: forces → coefficients and bearing torques 
 efficiencies and torques → forces (:func:`powergraph.statics.friction.solve_with_friction`).
 Here the same passes run on every point together, with arrays: for one direction pattern
 (who drives each element, taken from a single solve at a reference point) the torque
-balance of each point is a small square system built from
-:func:`powergraph.kinematics.elements.element_stencil`, and all of them are solved by one
+balance of each point is a small square system placed by the train system
+(:class:`powergraph.kinematics.system.TrainSystem`), and all of them are solved by one
 batched ``numpy.linalg.solve``. Each point stops at the pass where the single solve would
 stop (no efficiency changing by more than the tolerance, no bearing torque by more than the
 tolerance times the largest torque of the train), so its values are the single solve's.
@@ -32,8 +32,9 @@ from typing import Any
 import numpy as np
 
 from powergraph.errors import SolveError
-from powergraph.kinematics import element_stencil, elements_of, solve_speeds
+from powergraph.kinematics import elements_of, solve_speeds
 from powergraph.kinematics.elements import gear_torque
+from powergraph.kinematics.system import system_of
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.statics import solve
@@ -177,13 +178,8 @@ class _Grid:
 
     def balance(self, factors: np.ndarray, extra: np.ndarray) -> tuple[np.ndarray, ...]:
         """The stacked torque balances ``(P, B, B)``, their right-hand sides and solutions."""
-        n_points, n_el = factors.shape
-        matrix = np.zeros((n_points, len(self.row), len(self.row)))
-        for k, el in enumerate(self.elements):
-            for body, coefficient in zip(el.bodies, element_stencil(el.ratio, factors[:, k])):
-                matrix[:, self.row[body], k] += coefficient
-        for j, body in enumerate(self.unknown):
-            matrix[:, self.row[body], n_el + j] = 1.0
+        system = system_of(list(self.row), self.elements, self.unknown)
+        matrix = system.balance([[el.ratio] for el in self.elements], factors.T)
         rhs = -extra.copy()
         rhs[:, self.out_row] -= self.given
         return matrix, rhs, np.linalg.solve(matrix, rhs[..., None])[..., 0]

@@ -15,7 +15,8 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.errors import KinematicsError
-from powergraph.kinematics.elements import Element, body_columns, element_stencil, elements_of
+from powergraph.kinematics.elements import Element, elements_of
+from powergraph.kinematics.system import system_of
 from powergraph.linalg import (
     COND_LIMIT,
     PLAIN_UP_TO,
@@ -75,15 +76,12 @@ def constraint_triplets(model: Model, elements: tuple[Element, ...] | None = Non
     """The constraint rows as triplets: one row per element (its stencil, factor 1),
     then ``w_frame = 0``; columns: bodies in ``model.bodies`` order."""
     elements = elements_of(model) if elements is None else elements
-    column = {body.id: j for j, body in enumerate(model.bodies)}
+    ids = [body.id for body in model.bodies]
     n_el = len(elements)
-    ratio = np.array([el.ratio for el in elements], dtype=float)
-    on_a, on_b, on_c = element_stencil(ratio)
-    bodies = body_columns(elements, column).astype(np.int64).reshape(n_el, 3)
-    rows = np.concatenate([np.tile(np.arange(n_el), 3), [n_el]])
-    cols = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], [column[model.frame_body]]])
-    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c, [1.0]])
-    return Triplets.build(rows, cols, values, (n_el + 1, len(model.bodies)))
+    rows, cols, values = system_of(ids, elements).willis_triplets(
+        [el.ratio for el in elements])
+    return Triplets.build(np.append(rows, n_el), np.append(cols, ids.index(model.frame_body)),
+                          np.append(values, 1.0), (n_el + 1, len(ids)))
 
 
 def constraint_matrix(model: Model, elements: tuple[Element, ...] | None = None) -> np.ndarray:

@@ -14,7 +14,8 @@ import numpy as np
 
 from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
-from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
+from powergraph.kinematics.elements import ELEMENT_BODIES
+from powergraph.kinematics.system import TrainSystem, system_of
 from powergraph.linalg import (
     COND_LIMIT,
     PLAIN_UP_TO,
@@ -94,17 +95,9 @@ def equilibrium_triplets(model: Model, elements: tuple[Element, ...], loads: Loa
                          factors) -> Triplets:
     """The torque balance: rows = bodies, columns = element forces then unknown external
     torques. Each element's column is its stencil with its factor."""
-    row = {body.id: r for r, body in enumerate(model.bodies)}
-    n_el, n_ext = len(elements), len(loads.unknown)
-    ratio = np.array([el.ratio for el in elements], dtype=float)
-    on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
-    bodies = body_columns(elements, row).astype(np.int64).reshape(n_el, 3)
-    k = np.arange(n_el)
-    rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2],
-                           [row[b] for b in loads.unknown]])
-    cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
-    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c, np.ones(n_ext)])
-    return Triplets.build(rows, cols, values, (len(model.bodies), n_el + n_ext))
+    system = system_of([body.id for body in model.bodies], elements, loads.unknown)
+    triplets = system.balance_triplets([el.ratio for el in elements], factors)
+    return Triplets.build(*triplets, (system.n_bodies, system.n_columns))
 
 
 def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
@@ -162,6 +155,7 @@ class _Layout(NamedTuple):
     # per element, for its gear a, gear b and carrier: (row among ``others``, or -1;
     # position among the unknown torques, or -1) — the plain-Python path's map
     places: tuple[tuple[tuple[int, int], ...], ...]
+    system: TrainSystem      # the structure these come from
 
 
 def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layout | None:
@@ -180,12 +174,10 @@ def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], .
                unknown: tuple[str, ...]) -> _Layout | None:
     row = {body: r for r, body in enumerate(body_ids)}
     n_el, n_ext = len(triples), len(unknown)
-    bodies = np.array([[row[b] for b in triple] for triple in triples],
-                      dtype=np.int64).reshape(n_el, 3)
-    unknown_rows = np.array([row[b] for b in unknown], dtype=np.int64)
-    k = np.arange(n_el)
-    rows = np.concatenate([bodies[:, 0], bodies[:, 1], bodies[:, 2], unknown_rows])
-    cols = np.concatenate([k, k, k, n_el + np.arange(n_ext)])
+    system = TrainSystem(len(body_ids), [[row[b] for b in triple] for triple in triples],
+                         [row[b] for b in unknown])
+    unknown_rows = system.unknown
+    rows, cols, _ = system.balance_triplets(np.ones(n_el))
     square = len(body_ids) == n_el + n_ext and not use_sparse(n_el)
     distinct = len(set((rows * (n_el + n_ext) + cols).tolist())) == len(rows)
     if not (square and distinct and len(set(unknown_rows.tolist())) == n_ext):
@@ -195,8 +187,8 @@ def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], .
     row_of = {int(body): i for i, body in enumerate(balance)}
     unknown_of = {int(body): j for j, body in enumerate(unknown_rows)}
     places = tuple(tuple((row_of.get(body, -1), unknown_of.get(body, -1)) for body in triple)
-                   for triple in bodies.tolist())
-    return _Layout(order, rows[order], cols[order], unknown_rows, balance, places)
+                   for triple in system.places.tolist())
+    return _Layout(order, rows[order], cols[order], unknown_rows, balance, places, system)
 
 
 def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, factors,
@@ -210,10 +202,8 @@ def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, fact
     n_el = len(elements)
     if n_el <= PLAIN_UP_TO:
         return _solve_plain(layout, elements, factors, rhs, guess)
-    ratio = np.array([el.ratio for el in elements], dtype=float)
-    on_a, on_b, on_c = element_stencil(ratio, np.asarray(factors, dtype=float))
-    values = np.concatenate([np.broadcast_to(on_a, (n_el,)), on_b, on_c,
-                             np.ones(len(loads.unknown))])[layout.order]
+    values = layout.system.balance_triplets([el.ratio for el in elements],
+                                            factors)[2][layout.order]
     matrix = np.zeros((len(rhs), len(rhs)))
     matrix[layout.rows, layout.cols] = values
     matrix += 0.0   # no negative zeros, as Triplets drops them

@@ -26,7 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from powergraph.kinematics import Element, element_stencil
+from powergraph.kinematics import Element
+from powergraph.kinematics.system import TrainSystem, system_of
 from powergraph.model.spec import Model
 from powergraph.statics.directions import factors_for
 from powergraph.statics.equilibrium import Loads
@@ -49,6 +50,7 @@ class Statics:
     n_unknown: int             # unknown external torques (ports, frame reaction)
     unknown_rows: tuple[int, ...]
     ideal: frozenset[int]      # elements treated as lossless (ideal or asked so)
+    system: TrainSystem        # where the elements' and unknown torques' columns go
 
     @property
     def lossy(self) -> tuple[int, ...]:
@@ -64,12 +66,7 @@ class Statics:
 
     def column(self, k: int, factor) -> np.ndarray:
         """Torques of element ``k`` on every body per unit force (any factor shape)."""
-        e = self.elements[k]
-        factor = np.asarray(factor, dtype=float)
-        out = np.zeros(factor.shape + (len(self.row),))
-        for body, c in zip(e.bodies, element_stencil(e.ratio, factor)):
-            out[..., self.row[body]] += c
-        return out
+        return self.system.element_column(k, self.elements[k].ratio, factor)
 
 
 def statics_of(model: Model, elements: tuple[Element, ...], loads: Loads, rel: np.ndarray,
@@ -82,7 +79,8 @@ def statics_of(model: Model, elements: tuple[Element, ...], loads: Loads, rel: n
     top = float(np.max(np.abs(rhs))) or 1.0
     return Statics(elements=elements, rel=rel, row=row, rhs=rhs / top, top=top,
                    n_unknown=len(loads.unknown),
-                   unknown_rows=tuple(row[b] for b in loads.unknown), ideal=ideal)
+                   unknown_rows=tuple(row[b] for b in loads.unknown), ideal=ideal,
+                   system=system_of(list(row), elements, loads.unknown))
 
 
 def enumerate_patterns(st: Statics) -> list[tuple[int, ...]] | None:
@@ -98,15 +96,10 @@ def enumerate_patterns(st: Statics) -> list[tuple[int, ...]] | None:
         return None
     codes = np.array(list(itertools.product((1, -1), repeat=len(lossy))), dtype=float)
     codes = codes.reshape(len(codes), len(lossy))
-    matrix = np.zeros((len(codes), n_b, n_b))
-    for k, e in enumerate(st.elements):
-        factor = np.ones(len(codes))
-        if k in lossy:
-            code = codes[:, lossy.index(k)]
-            factor = factors_for(code, e.efficiency)
-        matrix[:, :, k] = st.column(k, factor)
-    for j, r in enumerate(st.unknown_rows):
-        matrix[:, r, n_el + j] = 1.0
+    factors = np.ones((n_el, len(codes)))
+    for k in lossy:
+        factors[k] = factors_for(codes[:, lossy.index(k)], st.elements[k].efficiency)
+    matrix = st.system.balance([[e.ratio] for e in st.elements], factors)
     try:
         solution = np.linalg.solve(matrix, np.broadcast_to(st.rhs, (len(codes), n_b))[..., None])
     except np.linalg.LinAlgError:

@@ -21,9 +21,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Hashable, Mapping, Sequence
 
+import numpy as np
 import sympy as sp
 
 from powergraph.kinematics.elements import element_stencil
+from powergraph.kinematics.system import TrainSystem
 
 
 @dataclass(frozen=True)
@@ -88,16 +90,21 @@ def train_systems(bodies: Sequence[Hashable], elements: Sequence[tuple[Hashable,
     force_matrix, force_rhs = sp.zeros(len(balanced), len(elements)), sp.zeros(len(balanced), 1)
     forces = sp.symbols(f"lambda0:{len(elements)}")
     on_body: dict[Hashable, sp.Expr] = {b: sp.Integer(0) for b in bodies}
-    for k, (places, ratio, factor) in enumerate(zip(elements, ratios, factors)):
-        for body, coef in zip(places, stencil(ratio)):
-            if body in column:
-                speed_matrix[k, column[body]] += coef
-            else:
-                speed_rhs[k] -= coef * speeds[body]
-        for body, coef in zip(places, stencil(ratio, factor)):
-            on_body[body] += coef * forces[k]
-            if body in row:
-                force_matrix[row[body], k] += coef
+    index = {b: j for j, b in enumerate(bodies)}
+    system = TrainSystem(len(bodies), [[index[b] for b in places] for places in elements])
+    ratios = [sp.sympify(r) for r in ratios]
+    for k, j, coef in zip(*system.willis_triplets(_symbols(ratios))):
+        body, coef = bodies[j], _exact(coef)
+        if body in column:
+            speed_matrix[k, column[body]] += coef
+        else:
+            speed_rhs[k] -= coef * speeds[body]
+    for j, k, coef in zip(*system.balance_triplets(_symbols(ratios),
+                                                    _symbols([sp.sympify(f) for f in factors]))):
+        body, coef = bodies[j], _exact(coef)
+        on_body[body] += coef * forces[k]
+        if body in row:
+            force_matrix[row[body], k] += coef
     for body, torque in torques.items():
         if body in row:
             force_rhs[row[body]] -= torque
@@ -115,9 +122,21 @@ def stencil(ratio: Any, factor: Any = 1) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
     >>> stencil(sp.Symbol("i"), sp.Symbol("f"))
     (1, -f*i, f*i - 1)
     """
-    coefs = [sp.sympify(c) for c in element_stencil(sp.sympify(ratio), sp.sympify(factor))]
-    return tuple(c.xreplace({f: sp.Integer(int(f)) for f in c.atoms(sp.Float) if float(f).is_integer()})
-                 for c in coefs)
+    return tuple(_exact(c) for c in element_stencil(sp.sympify(ratio), sp.sympify(factor)))
+
+
+def _exact(coefficient) -> sp.Expr:
+    """A stencil coefficient with its integer-valued floats (``1.0``) as integers."""
+    c = sp.sympify(coefficient)
+    return c.xreplace({f: sp.Integer(int(f)) for f in c.atoms(sp.Float)
+                       if float(f).is_integer()})
+
+
+def _symbols(values: list) -> np.ndarray:
+    """Sympy values as an object array (:class:`TrainSystem` keeps them exact)."""
+    array = np.empty(len(values), dtype=object)
+    array[:] = values
+    return array
 
 
 def solve_linear(matrix: sp.Matrix, rhs: sp.Matrix) -> tuple[sp.Expr, list[sp.Expr]]:

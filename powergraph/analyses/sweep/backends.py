@@ -4,7 +4,8 @@ A backend solves, for arrays of variants, the **speeds** (Willis rows over the b
 whose speed is not given) and the **forces** (the torque balances of the bodies with no
 unknown external torque, for the elements' factors ``f``), returning with the forces the
 external torques of the other bodies (the reactions). Every coefficient comes from
-:func:`~powergraph.kinematics.elements.element_stencil`. Ratio arguments are magnitudes:
+:func:`~powergraph.kinematics.elements.element_stencil`, placed by the train system
+(:class:`~powergraph.kinematics.system.TrainSystem`). Ratio arguments are magnitudes:
 ``i_k = s_k q_k`` with the sign ``s_k`` of a teeth-swept mesh folded in (``q_k = z_b/z_a``).
 
 - :class:`SymbolicBackend` builds both systems once with sympy
@@ -24,7 +25,7 @@ from typing import TYPE_CHECKING, Callable, Sequence
 
 import numpy as np
 
-from powergraph.kinematics.elements import element_stencil
+from powergraph.kinematics.system import TrainSystem
 from powergraph.linalg_batch import COND_LIMIT, solve_square_batch, structural_zeros
 from powergraph.statics.directions import factor_of, factors_for
 from powergraph.statics.equilibrium import port_torque
@@ -235,6 +236,7 @@ class NumericBackend:
     def __init__(self, layout: "Layout") -> None:
         self.layout = layout
         self._free = {body: j for j, body in enumerate(layout.free_bodies)}
+        self.system = TrainSystem(layout.n_bodies, layout.places, layout.unknown)
 
     def speeds(self, ratios: Sequence, given: Sequence) -> tuple[list, np.ndarray]:
         """Absolute speed of every body, and where the Willis rows fix them (regular)."""
@@ -243,15 +245,11 @@ class NumericBackend:
         known = {lay.frame: np.zeros(n)}
         for (body, _), value in zip(lay.speed_ports, given):
             known[body] = np.broadcast_to(np.asarray(value, float), n)
-        matrix = np.zeros((n, lay.n_elements, len(self._free)))
+        rows = self.system.willis(self._signed(ratios, n))           # (n, E, B)
+        matrix = rows[:, :, list(self._free)]
         rhs = np.zeros((n, lay.n_elements))
-        for k in range(lay.n_elements):
-            stencil = element_stencil(lay.signs[k] * np.asarray(ratios[k], float))
-            for body, coef in zip(lay.places[k], stencil):
-                if body in self._free:
-                    matrix[:, k, self._free[body]] += coef
-                else:
-                    rhs[:, k] -= coef * known[body]
+        for body, speed in known.items():
+            rhs -= rows[:, :, body] * speed[:, None]
         solution, bad = _batched_solve(matrix, rhs, full_rank_needed=True)
         speeds = [known[j] if j in known else solution[:, self._free[j]]
                   for j in range(lay.n_bodies)]
@@ -264,14 +262,9 @@ class NumericBackend:
         lay = self.layout
         n = _length(list(ratios) + list(factors) + list(torques))
         n_el = lay.n_elements
-        matrix = np.zeros((n, lay.n_bodies, n_el + len(lay.unknown)))
-        for k in range(n_el):
-            stencil = element_stencil(lay.signs[k] * np.asarray(ratios[k], float),
-                                      np.asarray(factors[k], float))
-            for body, coef in zip(lay.places[k], stencil):
-                matrix[:, body, k] += coef
-        for j, body in enumerate(lay.unknown):
-            matrix[:, body, n_el + j] = 1.0
+        matrix = self.system.balance(self._signed(ratios, n),
+                                     [np.broadcast_to(np.asarray(f, float), n)
+                                      for f in factors])
         rhs = np.zeros((n, lay.n_bodies))
         for load, torque in zip(lay.loads, torques):
             rhs[:, load.body] -= torque
@@ -281,6 +274,11 @@ class NumericBackend:
         reactions = [rhs[:, body] - on_body[:, body] for body in lay.unknown]
         return _squeezed(list(forces.T) + reactions, bad,
                          list(ratios) + list(factors) + list(torques))
+
+    def _signed(self, ratios: Sequence, n: int) -> np.ndarray:
+        """``(E, n)`` Willis ratios from the backend's ratio magnitudes."""
+        return np.array([np.broadcast_to(sign * np.asarray(r, float), n)
+                         for sign, r in zip(self.layout.signs, ratios)]).reshape(-1, n)
 
 
 def _squeezed(values: list, bad: np.ndarray, inputs: list) -> tuple[list, np.ndarray]:
