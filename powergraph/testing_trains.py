@@ -224,6 +224,30 @@ def _chain(rng: random.Random, count: int, start: int, eta: Callable[[], float],
     return stages
 
 
+def gear_chain_text(n: int, efficiency: float | None = None,
+                    input_port: str = "speed: 10, power: 100") -> str:
+    """A model file of ``n`` gears on fixed axes in a row: gear ``i`` (``20 + i % 7``
+    teeth) meshes gear ``i + 1`` on the frame, gear 1 is the input (its port's fields
+    ``input_port``), gear ``n`` the output; every mesh of ``efficiency`` (None: the
+    format's default). The long and the threshold chains of the tests and benchmarks:
+    the ratio is ``(-1)^(n-1) z_n/z_1`` and the efficiency ``η^(n-1)``.
+
+    >>> import powergraph as pg
+    >>> from powergraph.model import loads_model
+    >>> round(pg.solve(loads_model(gear_chain_text(4, 0.5))).efficiency, 12)
+    0.125
+    """
+    mesh = "" if efficiency is None else f", efficiency: {efficiency!r}"
+    port = f", {input_port}" if input_port else ""
+    lines = ["name: chain", "components:", "  0: {role: frame}"]
+    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
+    lines += ["links:"] + [f"  - {{type: mesh, between: [{i}, {i + 1}]{mesh}}}"
+                           for i in range(1, n)]
+    lines += ["ports:", f"  - {{component: 1, role: input{port}}}",
+              f"  - {{component: {n}, role: output}}"]
+    return "\n".join(lines) + "\n"
+
+
 def random_train(seed: Any, stages: tuple[int, int] = (1, 3), dof: int | None = None,
                  drive: str | None = None, eta: tuple[float, float] = (0.90, 1.0),
                  templates: list[str] | None = None) -> Train:

@@ -24,7 +24,7 @@ from powergraph.kinematics import elements_of
 from powergraph.model import load_model, loads_model
 from powergraph.statics.friction import loss_block_places
 from powergraph.testing import assert_conservation
-from powergraph.testing_trains import random_train
+from powergraph.testing_trains import gear_chain_text, random_train
 from powergraph.units_si import RPM_PER_RAD_S
 
 MODELS = sorted((Path(__file__).resolve().parents[1] / "models").glob("*.yaml"))
@@ -175,13 +175,7 @@ def test_a_cycling_random_train_with_both_backends(seed: int) -> None:
 
 def chain(n: int, eta: float):
     """``n`` gears on fixed axes in a row, each mesh of efficiency ``eta``."""
-    lines = ["name: chain", "components:", "  0: {role: frame}"]
-    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
-    lines += ["links:"] + [f"  - {{type: mesh, between: [{i}, {i + 1}]}}"
-                           for i in range(1, n)]
-    lines += ["ports:", "  - {component: 1, role: input, speed: 10, power: 100}",
-              f"  - {{component: {n}, role: output}}"]
-    return loads_model("\n".join(lines) + "\n").with_mesh_efficiency(eta)
+    return loads_model(gear_chain_text(n)).with_mesh_efficiency(eta)
 
 
 @pytest.mark.parametrize("n, eta", [(4, 1e-6), pytest.param(6, 1e-3, marks=pytest.mark.slow),

@@ -249,14 +249,9 @@ def chain(n: int, eta: float):
     """``n`` gears on fixed axes in a row, input power 100 W at gear 1, each mesh of
     efficiency ``eta``."""
     from powergraph.model import loads_model
+    from powergraph.testing_trains import gear_chain_text
 
-    lines = ["name: chain", "components:", "  0: {role: frame}"]
-    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
-    lines += ["links:"] + [f"  - {{type: mesh, between: [{i}, {i + 1}]}}"
-                           for i in range(1, n)]
-    lines += ["ports:", "  - {component: 1, role: input, speed: 10, power: 100}",
-              f"  - {{component: {n}, role: output}}"]
-    return loads_model("\n".join(lines) + "\n").with_mesh_efficiency(eta)
+    return loads_model(gear_chain_text(n)).with_mesh_efficiency(eta)
 
 
 def test_codes_the_bound_cannot_decide_are_left_to_numpy(kernels_always) -> None:

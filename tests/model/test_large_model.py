@@ -3,16 +3,12 @@ no per-link scan of all components; the benchmark benchmarks/large_model.py time
 from __future__ import annotations
 
 from powergraph.model import loads_model
+from powergraph.testing_trains import gear_chain_text
 
 
 def chain_text(n: int) -> str:
     """A fixed-axis chain: gear i meshes gear i + 1, carrier = the frame."""
-    lines = ["name: chain", "components:", "  0: {role: frame}"]
-    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
-    lines.append("links:")
-    lines += [f"  - {{type: mesh, between: [{i}, {i + 1}]}}" for i in range(1, n)]
-    lines += ["ports:", "  - {component: 1, role: input}", f"  - {{component: {n}, role: output}}"]
-    return "\n".join(lines) + "\n"
+    return gear_chain_text(n, input_port="")
 
 
 def test_a_20000_gear_chain_is_one_body_per_gear_and_every_mesh_on_the_frame() -> None:

@@ -19,6 +19,7 @@ from powergraph.errors import ModelError
 from powergraph import linalg
 from powergraph.model import loads_model, model_from_dict
 from powergraph.testing import assert_conservation
+from powergraph.testing_trains import gear_chain_text
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = sorted((ROOT / "models").glob("*.yaml"))
@@ -85,13 +86,7 @@ def test_series_is_determined_whatever_its_length(n: int, path) -> None:
 
 
 def chain_text(n: int, eta: float) -> str:
-    lines = ["name: chain", "components:", "  0: {role: frame}"]
-    lines += [f"  {i}: {{teeth: {20 + i % 7}}}" for i in range(1, n + 1)]
-    lines += ["links:"] + [f"  - {{type: mesh, between: [{i}, {i + 1}], efficiency: {eta}}}"
-                           for i in range(1, n)]
-    lines += ["ports:", "  - {component: 1, role: input, speed: 10, power: 100}",
-              f"  - {{component: {n}, role: output}}"]
-    return "\n".join(lines) + "\n"
+    return gear_chain_text(n, eta)
 
 
 @pytest.mark.slow  # 5,000 gears: the conservation check draws three large flow graphs
