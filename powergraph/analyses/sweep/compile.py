@@ -153,7 +153,7 @@ class CompiledSweep:
         ModelError
             A value out of range (named by its PATH).
         """
-        kernels = n_kernel = None
+        kernels = None
         arrays, shape = broadcast_values(self.parameters, values, check=False)
         n = int(np.prod(shape, dtype=np.int64))
         if n >= KERNEL_MIN_VARIANTS and self._closed_forms:
@@ -167,9 +167,8 @@ class CompiledSweep:
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
         rest = None if kernels is None else self._run_kernels(kernels, flat, outputs)
-        if rest is None or rest.size:
-            if kernels is not None:   # a variant not taken may have a value not allowed
-                check_all(self.parameters, arrays)
+        if kernels is not None and (rest is None or rest.size):
+            check_all(self.parameters, arrays)    # a variant left may hold a value not allowed
         if rest is None:
             self._run_chunks(flat, outputs, step, quiet)
         elif rest.size:                       # the variants no kernel took
@@ -202,8 +201,8 @@ class CompiledSweep:
     def _run_kernels(self, kernels, flat: dict, outputs: Outputs) -> np.ndarray | None:
         """The closed forms' numba kernels over every variant, written straight into
         ``outputs`` (the first form's over all of them, each next one's over those left);
-        the indices of the variants none took, or None when no kernel ran (no numba, no
-        closed form yet, or a kernel that does not compile)."""
+        the indices of the variants none took, or None when a kernel does not compile or
+        run (then numpy evaluates every variant)."""
         rest = None          # the variants not taken yet (None: all)
         swept = [flat[param.path] for param in self.parameters]
         for form in list(self._closed_forms):
