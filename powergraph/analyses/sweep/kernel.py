@@ -165,8 +165,7 @@ def allowed_checks(parameters: Sequence["Parameter"], scalar: Sequence[bool]) ->
         if param.kind in ALLOWED:
             checks.append(f"{param.kind}_allowed(v{i}[j])")
         else:
-            limit = _paths._LIMITS.get(param.kind, math.inf)
-            checks.append(f"port_value_allowed(v{i}[j], {_number(limit)})")
+            checks.append(f"port_value_allowed(v{i}[j], {_number(_paths.port_limit(param.kind))})")
     return checks
 
 

@@ -167,7 +167,12 @@ def value_allowed(kind: str, value):
         return efficiency_allowed(value)
     if kind == "ratio":
         return ratio_allowed(value)
-    return port_value_allowed(value, _LIMITS.get(kind, math.inf))
+    return port_value_allowed(value, port_limit(kind))
+
+
+def port_limit(kind: str) -> float:
+    """The largest speed, power or torque (SI, either way) a model file takes."""
+    return _LIMITS.get(kind, math.inf)
 
 
 def teeth_allowed(z):
