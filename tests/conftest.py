@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 from pathlib import Path
 
 # The library chooses no matplotlib backend; the test session draws off-screen.
@@ -15,6 +17,21 @@ from powergraph.testing import assert_conservation
 ROOT = Path(__file__).resolve().parents[1]
 MODELS = ROOT / "models"
 SLOW_TESTS = Path(__file__).resolve().parent / "slow_tests.txt"
+
+
+def pytest_configure(config) -> None:
+    """The sweep's compiled kernels go to the test session's own folder — pytest's cache
+    (kept between runs), or a temporary folder without it — never to the user's kernel
+    cache, unless POWERGRAPH_CACHE_DIR chooses one."""
+    if "POWERGRAPH_CACHE_DIR" in os.environ:
+        return
+    cache = getattr(config, "cache", None)
+    if cache is not None:
+        directory = cache.mkdir("powergraph-kernels")
+    else:
+        directory = Path(tempfile.mkdtemp(prefix="powergraph-kernels-"))
+        config.add_cleanup(lambda: shutil.rmtree(directory, ignore_errors=True))
+    os.environ["POWERGRAPH_CACHE_DIR"] = str(directory)
 
 
 def pytest_collection_modifyitems(config, items) -> None:
