@@ -122,7 +122,7 @@ class SweepResult(Displayed):
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
-                   converged=shaped((outputs.status == OK) | (outputs.status == LOCKED)),
+                   converged=shaped(_converged(outputs.status)),
                    status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
 
@@ -311,3 +311,12 @@ def _cells(name: str, values: np.ndarray) -> list[str]:
     if name.replace("]", "").endswith(".teeth"):
         return list(map(str, values.astype(np.int64).tolist()))
     return list(map(repr, values.astype(float).tolist()))
+
+
+def _converged(status: np.ndarray) -> np.ndarray:
+    """Where a variant has an answer (``ok`` or ``locked``): one pass and one new array
+    when nothing locked (a run's usual case), for a million variants or more."""
+    converged = status == OK
+    if status.size and status.max() >= LOCKED:
+        converged |= status == LOCKED
+    return converged
