@@ -140,9 +140,10 @@ def numba_closed_form():
 def numba_sweep_outputs():
     """The hand derivation as a numba kernel writing every array the sweep returns, or None
     without numba: ratio, efficiency, input and output power, total loss, a loss and a
-    driver code per link (the coupling's loss 0 by derivation: an array of zeros never
-    written, as the sweep's), self-locking, status and passes (constants by derivation),
-    and the validity flag (standing for ``converged``)."""
+    driver code per link (the coupling's loss 0 by derivation), self-locking, status and
+    passes (constants by derivation), and the validity flag (standing for ``converged``);
+    fresh arrays written once each, in the loop (zeroing them first with ``np.zeros``
+    would cost a pass over memory)."""
     try:
         import numba
     except ImportError:
@@ -150,7 +151,8 @@ def numba_sweep_outputs():
 
     @numba.njit(parallel=True, cache=True)
     def kernel(z1, z2, z4, z5, eta1, eta2, power, ratio, efficiency, input_power,
-               output_power, total_loss, losses, drivers, self_locking, passes, valid):
+               output_power, total_loss, losses, drivers, self_locking, status, passes,
+               valid):
         for j in numba.prange(len(z1)):
             k = z2[j] / z1[j]
             i = 1.0 + k * z5[j] / (z5[j] - z4[j])
@@ -159,22 +161,23 @@ def numba_sweep_outputs():
             total = power * (1.0 - eta)
             ratio[j], efficiency[j], total_loss[j] = i, eta, total
             input_power[j], output_power[j] = power, power * eta
-            losses[0, j], losses[1, j] = loss_12, total - loss_12
+            losses[0, j], losses[1, j], losses[2, j] = loss_12, total - loss_12, 0.0
             drivers[0, j], drivers[1, j], drivers[2, j] = 1, -1, 1
             self_locking[j] = eta <= 0.0
-            passes[j] = 1
+            status[j], passes[j] = 0, 1
             valid[j] = z5[j] > z4[j]
 
     def run(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, np.ndarray]:
         n = len(z1)
         out = {name: np.empty(n) for name in ("ratio", "efficiency", "input_power",
                                                "output_power", "total_loss")}
-        out.update(losses=np.zeros((3, n)), drivers=np.empty((3, n), dtype=np.int8),
-                   self_locking=np.empty(n, dtype=bool), status=np.zeros(n, dtype=np.int8),
+        out.update(losses=np.empty((3, n)), drivers=np.empty((3, n), dtype=np.int8),
+                   self_locking=np.empty(n, dtype=bool), status=np.empty(n, dtype=np.int8),
                    passes=np.empty(n, dtype=np.int8), valid=np.empty(n, dtype=bool))
         kernel(z1, z2, z4, z5, eta1, eta2, power, out["ratio"], out["efficiency"],
                out["input_power"], out["output_power"], out["total_loss"], out["losses"],
-               out["drivers"], out["self_locking"], out["passes"], out["valid"])
+               out["drivers"], out["self_locking"], out["status"], out["passes"],
+               out["valid"])
         return out
 
     return run

@@ -76,18 +76,14 @@ class Outputs:
             "self_locking", "status", "passes")
     DTYPES = {"self_locking": bool, "status": np.int8, "passes": np.int8}
 
-    #: Arrays that start zeroed (``ok``, no loss): the kernels write only where they are
-    #: not, and pages never written cost no time (the system hands out zeroed pages).
-    ZEROED = ("status",)
-
     @classmethod
     def empty(cls, n: int, n_el: int) -> "Outputs":
-        """Fresh arrays for ``n`` variants of a train with ``n_el`` elements (``status``
-        and ``losses`` zeroed, the others not initialised)."""
-        new = lambda name: np.zeros if name in cls.ZEROED else np.empty  # noqa: E731
-        return cls(**{name: new(name)(n, dtype=cls.DTYPES.get(name, float))
+        """Fresh arrays for ``n`` variants of a train with ``n_el`` elements, not
+        initialised (zeroing them would cost a pass over memory: whoever evaluates a
+        variant writes every result of it)."""
+        return cls(**{name: np.empty(n, dtype=cls.DTYPES.get(name, float))
                       for name in cls.ROWS},
-                   losses=np.zeros((n_el, n)), codes=np.empty((n_el, n), dtype=np.int8))
+                   losses=np.empty((n_el, n)), codes=np.empty((n_el, n), dtype=np.int8))
 
     def part(self, start: int, stop: int) -> "Outputs":
         """Views of the variants ``start:stop``."""
