@@ -72,21 +72,17 @@ from types import MappingProxyType
 
 import numpy as np
 
+from powergraph.testing_trains import RV_PATHS, rv_variants
+
 ROOT = Path(__file__).resolve().parents[1]
 MODEL = ROOT / "models" / "rv40e_wang2021.yaml"
-PATHS = ("components.1.teeth", "components.2.teeth", "components.4.teeth",
-         "components.5.teeth", "links.0.efficiency", "links.1.efficiency")
+PATHS = RV_PATHS
 POWER = 2270.0   # W, the model's input power
 
 
 def variants(n: int, seed: int = 0) -> dict[str, np.ndarray]:
     """Random RV variants by PATH (teeth as integers)."""
-    rng = np.random.default_rng(seed)
-    z1 = rng.integers(10, 21, n)
-    z2 = np.round(z1 * rng.uniform(2.0, 4.0, n)).astype(np.int64)
-    z4 = rng.integers(25, 61, n)
-    return dict(zip(PATHS, (z1, z2, z4, z4 + 1, rng.uniform(0.90, 1.0, n),
-                            rng.uniform(0.90, 1.0, n))))
+    return rv_variants(n, seed)
 
 
 def closed_form(z1, z2, z4, z5, eta1, eta2, power: float = POWER) -> dict[str, np.ndarray]:

@@ -248,6 +248,30 @@ def gear_chain_text(n: int, efficiency: float | None = None,
     return "\n".join(lines) + "\n"
 
 
+#: The PATHs :func:`rv_variants` sweeps in models/rv40e_wang2021.yaml.
+RV_PATHS = ("components.1.teeth", "components.2.teeth", "components.4.teeth",
+            "components.5.teeth", "links.0.efficiency", "links.1.efficiency")
+
+
+def rv_variants(n: int, seed: int = 0) -> dict:
+    """``n`` random RV-40E variants by PATH (:data:`RV_PATHS`): z1 in 10…20, z2 =
+    round(z1·U(2, 4)), z4 in 25…60, z5 = z4 + 1 (teeth as integers), η1 and η2 in
+    U(0.90, 1.0) — the sweep benchmark's and the kernel tests' design space.
+
+    >>> v = rv_variants(3)
+    >>> bool((v["components.5.teeth"] == v["components.4.teeth"] + 1).all())
+    True
+    """
+    import numpy as np
+
+    rng = np.random.default_rng(seed)
+    z1 = rng.integers(10, 21, n)
+    z2 = np.round(z1 * rng.uniform(2.0, 4.0, n)).astype(np.int64)
+    z4 = rng.integers(25, 61, n)
+    return dict(zip(RV_PATHS, (z1, z2, z4, z4 + 1, rng.uniform(0.90, 1.0, n),
+                               rng.uniform(0.90, 1.0, n))))
+
+
 def random_train(seed: Any, stages: tuple[int, int] = (1, 3), dof: int | None = None,
                  drive: str | None = None, eta: tuple[float, float] = (0.90, 1.0),
                  templates: list[str] | None = None) -> Train:

@@ -23,6 +23,7 @@ from powergraph.analyses.sweep.backends import applies
 from powergraph.errors import PowerGraphError
 from powergraph.kinematics import elements_of
 from powergraph.model import load_model
+from powergraph import testing_trains
 from powergraph.statics.friction import loss_block_places
 
 numba = pytest.importorskip("numba")
@@ -99,8 +100,7 @@ def test_every_model_through_the_kernels(path: Path, kernels_always) -> None:
 # --- the RV: its hand-derived closed form, its back-driven variants -----------------------
 
 RV = ROOT / "models" / "rv40e_wang2021.yaml"
-PATHS = ("components.1.teeth", "components.2.teeth", "components.4.teeth",
-         "components.5.teeth", "links.0.efficiency", "links.1.efficiency")
+PATHS = testing_trains.RV_PATHS
 POWER = 2270.0
 
 
@@ -110,12 +110,7 @@ def rv_sweep():
 
 
 def rv_variants(n: int, seed: int = 1) -> dict:
-    rng = np.random.default_rng(seed)
-    z1 = rng.integers(10, 21, n)
-    z2 = np.round(z1 * rng.uniform(2.0, 4.0, n)).astype(np.int64)
-    z4 = rng.integers(25, 61, n)
-    return dict(zip(PATHS, (z1, z2, z4, z4 + 1, rng.uniform(0.90, 1.0, n),
-                            rng.uniform(0.90, 1.0, n))))
+    return testing_trains.rv_variants(n, seed)
 
 
 def test_rv_variants_equal_the_hand_derivation(rv_sweep, kernels_always) -> None:
