@@ -47,10 +47,17 @@ class Statics:
     row: dict[str, int]
     rhs: np.ndarray            # minus the given external torques, normalised to max 1
     top: float                 # the normalising torque (N·m)
-    n_unknown: int             # unknown external torques (ports, frame reaction)
-    unknown_rows: tuple[int, ...]
     ideal: frozenset[int]      # elements treated as lossless (ideal or asked so)
     system: TrainSystem        # where the elements' and unknown torques' columns go
+
+    @property
+    def n_unknown(self) -> int:
+        """Unknown external torques (ports, frame reaction)."""
+        return len(self.system.unknown)
+
+    @property
+    def unknown_rows(self) -> tuple[int, ...]:
+        return tuple(self.system.unknown.tolist())
 
     @property
     def lossy(self) -> tuple[int, ...]:
@@ -77,9 +84,7 @@ def statics_of(model: Model, elements: tuple[Element, ...], loads: Loads, rel: n
     for body, torque in loads.given.items():
         rhs[row[body]] -= torque
     top = float(np.max(np.abs(rhs))) or 1.0
-    return Statics(elements=elements, rel=rel, row=row, rhs=rhs / top, top=top,
-                   n_unknown=len(loads.unknown),
-                   unknown_rows=tuple(row[b] for b in loads.unknown), ideal=ideal,
+    return Statics(elements=elements, rel=rel, row=row, rhs=rhs / top, top=top, ideal=ideal,
                    system=system_of(list(row), elements, loads.unknown))
 
 
