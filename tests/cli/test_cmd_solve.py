@@ -106,19 +106,22 @@ def test_solve_does_not_import_matplotlib_or_sympy() -> None:
     assert "MPL" not in proc.stderr and "SYMPY" not in proc.stderr
 
 
-def test_solve_loads_no_other_command_nor_numpy_ma() -> None:
+@pytest.mark.parametrize("name", ["rv40e_wang2021.yaml", "rv40e.yaml"])
+def test_solve_loads_no_other_command_nor_numpy_ma_nor_scipy(name) -> None:
     """Start-up: `powergraph solve` registers its own command only, and takes no path that
-    imports numpy.ma (np.unique does, 10 ms)."""
+    imports numpy.ma (np.unique does, 10 ms) or scipy (the friction model's operating
+    pressure angle once took scipy.optimize's root finder: 0.35 s)."""
     check = ("import sys\n"
              "from powergraph.cli.main import main\n"
              "assert main(['solve', %r, '--json']) == 0\n"
              "others = sorted(m for m in sys.modules if m.startswith('powergraph.cli.cmd_')"
              " and m != 'powergraph.cli.cmd_solve')\n"
-             "print(others, 'numpy.ma' in sys.modules, file=sys.stderr)") % RV
+             "print(others, 'numpy.ma' in sys.modules, 'scipy' in sys.modules, file=sys.stderr)"
+             ) % str(ROOT / "models" / name)
     proc = subprocess.run([sys.executable, "-c", check], capture_output=True, text=True,
                           cwd=ROOT)
     assert proc.returncode == 0, proc.stderr
-    assert proc.stderr.strip().splitlines()[-1] == "[] False"
+    assert proc.stderr.strip().splitlines()[-1] == "[] False False"
 
 
 def test_solve_reports_the_cycloid_fluctuation_at_the_output(capsys) -> None:
