@@ -2,7 +2,7 @@
 table (``_repr_html_``) and ``to_dataframe()``.
 
 A result class derives from :class:`Displayed` (and is declared with
-``@dataclass(frozen=True, repr=False)`` so the dataclass keeps this ``repr``) and writes
+``@record(repr=False)`` (:mod:`powergraph.records`) so the class keeps this ``repr``) and writes
 two methods: ``_summary()``, one line of text, and ``_records()``, a list of dicts (one per
 row, the same keys in each). pandas is optional: :func:`dataframe` imports it when asked
 and says how to install it when it is missing.

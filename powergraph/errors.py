@@ -15,7 +15,7 @@ True
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from powergraph.records import record
 
 
 class PowerGraphError(Exception):
@@ -59,7 +59,7 @@ class UsageError(PowerGraphError, ValueError):
     """Bad command-line or function arguments (not a model problem)."""
 
 
-@dataclass(frozen=True)
+@record
 class Caveat:
     """A warning about a model or a result: the answer stands, but a designer should know.
 

@@ -28,6 +28,7 @@ from typing import Any, Callable
 from powergraph.kinematics import backdriven
 from powergraph.model import model_from_dict
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 FRAME = "0"
 
@@ -49,7 +50,7 @@ class Stage:
                      self.inp, 1.0 / self.ratio)
 
 
-@dataclass(frozen=True)
+@record
 class Train:
     """A generated train: its model data and model, the stages, and what is known in
     closed form (``ratio`` for 1 DOF; ``speeds`` of the ports' components)."""

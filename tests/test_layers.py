@@ -3,7 +3,7 @@
 Layers, earliest first (docs/architecture.md)::
 
     0 base        powergraph (the package facade: errors at import, the rest lazily),
-                  powergraph.errors, powergraph.result, powergraph.format (numbers for a
+                  powergraph.errors, powergraph.records, powergraph.result, powergraph.format (numbers for a
                   person), powergraph.display (repr, HTML, DataFrames), powergraph.gears
                   (involute geometry and mesh-loss physics that the model, statics and
                   analyses share)
@@ -42,7 +42,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "powergraph"
 LAYERS = (("powergraph.cli", 6), ("powergraph.__main__", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
           ("powergraph.analyses", 4), ("powergraph.testing", 3),
           ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
-          ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0),
+          ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0), ("powergraph.records", 0),
           ("powergraph.result", 0), ("powergraph.format", 0), ("powergraph.display", 0), ("powergraph.gears", 0), ("powergraph", 0))
 
 

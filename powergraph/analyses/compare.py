@@ -15,7 +15,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from typing import Any, Iterable, Iterator
 
 from powergraph.errors import PowerGraphError
@@ -23,6 +23,7 @@ from powergraph.kinematics import backdriven
 from powergraph.model.spec import Model
 from powergraph.format import (POWER_UNITS, VOLUME_UNITS, aligned_table, format_column,
                                format_fixed, format_number, format_ratio)
+from powergraph.records import record
 from powergraph.statics import solve
 from powergraph.display import Displayed
 
@@ -37,7 +38,7 @@ COLUMNS = (("name", "train", "text"), ("ratio", "ratio", "ratio"),
            ("power_density_kw_per_l", "kW/L", "number"))
 
 
-@dataclass(frozen=True)
+@record
 class ComparisonRow:
     """One train's figures of merit (powers in W, volume in mm³, density in kW/L).
 
@@ -76,7 +77,7 @@ class ComparisonRow:
         return asdict(self)
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ComparisonTable(Displayed):
     """Rows of several trains; a sequence of :class:`ComparisonRow` (``table[0]``,
     ``for row in table``) that follows :class:`powergraph.result.Result`."""

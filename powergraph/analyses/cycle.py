@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import IO, Any, Mapping
 
 import numpy as np
@@ -28,9 +28,10 @@ import numpy as np
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
 from powergraph.analyses.cycle_points import Points, as_dict, read_points
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class CycleRow:
     """One operating point: its duration (s), mode, powers entering and leaving the
     system (W), loss (W), efficiency (None when no power passes) and verdict
@@ -61,7 +62,7 @@ class CycleRow:
                 "negative_split": self.negative_split, "warnings": list(self.warnings)}
 
 
-@dataclass(frozen=True)
+@record
 class CycleResult:
     """The cycle's rows and totals: energies in, out and lost per element (J), the cycle
     efficiency (energy out / energy in), time per mode (s) and the rows that lock."""

@@ -21,7 +21,6 @@ from __future__ import annotations
 import csv
 import io
 import re
-from dataclasses import dataclass
 from typing import IO, Any
 
 import numpy as np
@@ -29,13 +28,14 @@ import numpy as np
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 
 _HEADER = re.compile(r"^\s*(?P<port>.+?)\.(?P<what>speed|power|torque)\s*"
                      r"(\[(?P<unit>[^\]]*)\])?\s*$")
 _TIME = re.compile(r"^\s*(?P<what>duration|time)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
 
 
-@dataclass(frozen=True)
+@record
 class Points:
     """The operating points: ``columns`` ``(PATH, port index, kind)`` with their SI
     ``values`` (one array per column), each row's duration (s) and mode (or None)."""

@@ -26,7 +26,6 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -37,6 +36,7 @@ from powergraph.kinematics.elements import gear_torque
 from powergraph.kinematics.system import system_of
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics import solve
 from powergraph.statics.bearings import (body_torques, bearing_torque, relative_speed,
                                          tooth_force, torque_change)
@@ -56,7 +56,7 @@ TOLERANCE = 1e-12
 MAX_CONDITION = 1e12
 
 
-@dataclass(frozen=True)
+@record
 class GridSolution:
     """Efficiency and input power (W) per point; ``unconverged`` marks points whose passes
     did not converge (efficiency NaN); ``single_solves`` counts points solved one by one."""
@@ -135,7 +135,7 @@ def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
     return grid.iterate(TOLERANCE, MAX_PASSES)
 
 
-@dataclass(frozen=True)
+@record
 class _Grid:
     """The arrays of one batch: ``P`` points, bodies ``B`` (rows), elements then unknown
     external torques (columns)."""

@@ -22,7 +22,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any, Sequence
 
 import numpy as np
@@ -31,6 +31,7 @@ from powergraph.analyses.efficiency_grid import at_point, solve_grid
 from powergraph.errors import UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.friction import friction_meshes
@@ -41,7 +42,7 @@ from powergraph.format import aligned_table, format_fixed, format_number
 
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class EfficiencyMap(Displayed):
     """Efficiency ``efficiency[i, j]`` at input speed ``speeds_rpm[i]`` and output torque
     ``torques[j]`` (N·m, the load the output drives). ``load_dependent`` is True when it

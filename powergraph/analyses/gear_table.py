@@ -13,16 +13,17 @@ Examples
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.kinematics.variants import backdriven
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.modes import ModeResult, solve_mode
 
 
-@dataclass(frozen=True)
+@record
 class GearRow:
     """One mode of the table. Ratios are input over output speed; ``step`` is this
     forward gear's ratio over the next forward gear's (None for the last and reverse);
@@ -54,7 +55,7 @@ class GearRow:
                 "warnings": [str(w) for w in self.warnings]}
 
 
-@dataclass(frozen=True)
+@record
 class GearTable:
     """Every mode of a train; follows the result protocol."""
 

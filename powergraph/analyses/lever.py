@@ -21,15 +21,16 @@ Examples
 from __future__ import annotations
 
 from collections import defaultdict
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any, Mapping
 
 from powergraph.format import format_number
 from powergraph.kinematics.elements import willis_ratio
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class LeverNode:
     """One coaxial member on a lever: its position (carrier 0, reference 1), its body,
     its speed in the mode drawn (rad/s), and the shift elements acting on it."""
@@ -42,7 +43,7 @@ class LeverNode:
     elements: tuple[str, ...]
 
 
-@dataclass(frozen=True)
+@record
 class Lever:
     """One planetary set: its carrier and its nodes sorted by position."""
 
@@ -50,7 +51,7 @@ class Lever:
     nodes: tuple[LeverNode, ...]
 
 
-@dataclass(frozen=True)
+@record
 class LeverDiagram:
     """Every planetary set of a train as a lever, with the speeds of one mode."""
 

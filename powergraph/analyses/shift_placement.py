@@ -27,7 +27,7 @@ Examples
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any, Mapping, Sequence
 
 from powergraph.display import Displayed
@@ -35,6 +35,7 @@ from powergraph.errors import PowerGraphError, UsageError
 from powergraph.format import format_ratio
 from powergraph.kinematics import degrees_of_freedom, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 #: Combinations of gear states tried at most (each target keeps its best states first).
 MAX_COMBINATIONS = 200_000
@@ -42,7 +43,7 @@ MAX_COMBINATIONS = 200_000
 STANDSTILL = 1e-9
 
 
-@dataclass(frozen=True)
+@record
 class GearState:
     """One pair of engaged elements: input clutches to ``clutches`` (components), brakes
     on ``brakes``, and the ratio (input speed / output speed) they give."""
@@ -57,7 +58,7 @@ class GearState:
                 + tuple(("brake", b) for b in self.brakes))
 
 
-@dataclass(frozen=True)
+@record
 class ShiftPlan:
     """A set of shift elements and the state of each target gear: ``gears[i]`` is the
     state for ``targets[i]``; ``names`` maps ``(kind, member)`` to the element's name."""
@@ -102,7 +103,7 @@ class ShiftPlan:
                                                            self.gears)]}
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ShiftPlacement(Displayed):
     """The plans found for a gearset, best first, and the gear states they came from."""
 

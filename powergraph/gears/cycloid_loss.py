@@ -51,20 +51,21 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from typing import Any
 
 import numpy as np
 
 from powergraph.errors import ModelError
 from powergraph.gears.cycloid import pin_forces, pin_phases, pitch_distance, stage_problem
+from powergraph.records import record
 
 #: Crank angles per pin pitch (and cranks' / output pins' positions per revolution) of the
 #: averages: the midpoint rule is then exact to far below 1e-9 of the loss factors.
 SAMPLES = 256
 
 
-@dataclass(frozen=True)
+@record
 class PinRing:
     """A cycloid disc of ``lobes`` (z_c) in a ring of ``z_c + 1`` pins (lengths in mm)."""
 
@@ -78,7 +79,7 @@ class PinRing:
         return self.lobes + 1
 
 
-@dataclass(frozen=True)
+@record
 class PinContact:
     """Friction at the ring's pins: coefficient ``mu``; ``rolling`` pins turn in a seat (or
     on a bearing) of ``seat_radius`` (default: the pin radius), fixed pins slide on the disc."""
@@ -88,7 +89,7 @@ class PinContact:
     seat_radius: float | None = None
 
 
-@dataclass(frozen=True)
+@record
 class OutputPins:
     """A W output mechanism: ``count`` pins on ``circle_radius`` in holes of radius pin +
     e. ``rolling`` sleeves of outer ``radius`` turn on a seat of ``seat_radius``."""
@@ -101,7 +102,7 @@ class OutputPins:
     seat_radius: float | None = None
 
 
-@dataclass(frozen=True)
+@record
 class CrankBearing:
     """The disc's bearing on its eccentric: coefficient ``mu`` referred to the bore radius
     ``radius``; ``crank_circle_radius`` 0 for one central crank, else the radius of the
@@ -112,7 +113,7 @@ class CrankBearing:
     crank_circle_radius: float = 0.0
 
 
-@dataclass(frozen=True)
+@record
 class CycloidLoss:
     """Loss factors and efficiencies of a cycloid stage (per unit crank-frame power)."""
 

@@ -27,7 +27,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from functools import lru_cache
 from typing import Any
 
@@ -35,9 +35,10 @@ import numpy as np
 
 from powergraph.gears.involute import involute, inverse_involute
 from powergraph.errors import ModelError
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class MeshGeometry:
     """The geometry of an involute pair that the loss factor needs.
 
@@ -68,7 +69,7 @@ class MeshGeometry:
     addendum: float = 1.0
 
 
-@dataclass(frozen=True)
+@record
 class PathOfContact:
     """Transverse geometry of the pair: radii (mm), angles (rad) and the path of contact."""
 
@@ -82,7 +83,7 @@ class PathOfContact:
     warnings: tuple[str, ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class MeshLoss:
     """Contact ratios, Ohlendorf's loss factor and (with ``mu``) the basic efficiency."""
 

@@ -8,7 +8,7 @@ KinematicsError that says what is wrong, never a NaN.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Mapping
 
@@ -30,9 +30,10 @@ from powergraph.linalg import (
     svd_rank,
 )
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class Kinematics:
     """Speeds of a train. ``body_speeds`` in rad/s keyed by body id ("2/3").
 

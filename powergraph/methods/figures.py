@@ -28,7 +28,6 @@ Examples
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Callable, Iterable, Mapping
 
@@ -36,6 +35,7 @@ import numpy as np
 
 from powergraph.errors import SolveError
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 NEEDLE_EFFICIENCY = 0.998   # needle-roller pin mesh (docs/theory.md)
 
@@ -46,7 +46,7 @@ def _frozen(values: Iterable[float]) -> np.ndarray:
     return array
 
 
-@dataclass(frozen=True)
+@record
 class Curve:
     """One curve: ``y`` against ``x`` by ``method`` ("wang2021" or "virtual-power")."""
 
@@ -61,7 +61,7 @@ class Curve:
                 "x": self.x.tolist(), "y": self.y.tolist()}
 
 
-@dataclass(frozen=True)
+@record
 class Mark:
     """An annotated point (e.g. a published reference value on a curve)."""
 
@@ -71,7 +71,7 @@ class Mark:
     text: str
 
 
-@dataclass(frozen=True)
+@record
 class FigureData:
     """Everything a figure shows; the plot functions compute nothing.
 

@@ -18,17 +18,18 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from powergraph.methods.tuning import lossless_cycloid_power
 from powergraph.methods.wang2021 import Wang2021Result, paper_equations, solve_wang2021
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.result import nothing_to_draw
 from powergraph.statics.result import PowerFlowResult
 
 
-@dataclass(frozen=True)
+@record
 class MethodComparison:
     """Both methods on one model, and the equivalent cycloid-mesh efficiency.
 

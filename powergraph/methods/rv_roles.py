@@ -24,10 +24,10 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 from powergraph.errors import MethodNotApplicableError
 from powergraph.model.spec import Link, Model
+from powergraph.records import record
 
 NEEDS = ("the wang2021 method needs an RV-type train (Wang 2021, Fig. 2): one input port on "
          "a central gear meshing with a planet/crank body whose carrier is the output body; "
@@ -36,7 +36,7 @@ NEEDS = ("the wang2021 method needs an RV-type train (Wang 2021, Fig. 2): one in
          "or coupled")
 
 
-@dataclass(frozen=True)
+@record
 class RVRoles:
     """Which component plays which part of Wang's RV reducer (component ids as strings).
 

@@ -42,7 +42,7 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from powergraph.errors import MethodNotApplicableError, SolveError, StaticsError
@@ -51,12 +51,13 @@ from powergraph.methods.rv_roles import NEEDS, RVRoles, find_rv_roles
 from powergraph.methods.wang2021_equations import PaperEquations
 from powergraph.methods.wang2021_report import result_to_dict, split_flows, text_report
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.flow import Flow
 from powergraph.statics.friction import loss_block_places
 from powergraph.statics.result import PowerFlowResult
 
 
-@dataclass(frozen=True)
+@record
 class PaperMesh:
     """One mesh as the paper's method sees it.
 
@@ -75,7 +76,7 @@ class PaperMesh:
     loss: float
 
 
-@dataclass(frozen=True)
+@record
 class Wang2021Result:
     """The paper's method on one model; follows :class:`powergraph.result.Result`.
 

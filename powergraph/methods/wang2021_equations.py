@@ -6,10 +6,10 @@
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class PaperEquations:
     """Eqs. (8)–(15) of Wang (2021) for given ratios, input power and mesh efficiencies.
 

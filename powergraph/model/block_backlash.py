@@ -42,15 +42,16 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class BacklashBlock:
     """A validated ``backlash:`` block (lengths in mm, angle in degrees).
 

@@ -19,16 +19,16 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 from powergraph.units_si import RPM_PER_RAD_S
 
 
-@dataclass(frozen=True)
+@record
 class BearingFriction:
     """Load-dependent bearing friction ``M = mu * F * bore / 2`` (``bore`` in mm)."""
 
@@ -48,7 +48,7 @@ class BearingFriction:
         return self.mu > 0.0
 
 
-@dataclass(frozen=True)
+@record
 class Drag:
     """No-load drag ``M0 = a + b * |n|`` (N·m; ``n`` the relative speed in rpm)."""
 

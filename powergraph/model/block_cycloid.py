@@ -35,14 +35,14 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class CycloidBlock:
     """A validated ``cycloid:`` block (lengths in mm).
 

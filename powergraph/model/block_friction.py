@@ -5,17 +5,17 @@ alone (no friction) is read by :func:`parse_mesh_geometry`: the feasibility chec
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.gears.mesh_loss import MeshGeometry, iso14179_mu, mesh_loss
 from powergraph.errors import ModelError
 from powergraph.model.units import parse_in_unit, parse_quantity
+from powergraph.records import record
 
 FRICTION_MODELS = ("constant", "iso14179")
 
 
-@dataclass(frozen=True)
+@record
 class MeshFriction:
     """How one mesh loses power: its involute geometry and its friction law.
 

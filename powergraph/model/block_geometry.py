@@ -44,12 +44,13 @@ powergraph.errors.ModelError: components.1.geometry.module: must be > 0 mm, got 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import field, fields
 from typing import Any, ClassVar
 
 from powergraph.errors import ModelError
 from powergraph.model.schema_parts import NON_NEGATIVE, POSITIVE
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 
 
 def _length(doc: str, symbol: str, minimum: str = POSITIVE) -> Any:
@@ -83,7 +84,7 @@ class _Shape:
         """Checks that need the component's tooth number (nothing by default)."""
 
 
-@dataclass(frozen=True)
+@record
 class GearGeometry(_Shape):
     """External spur gear, Eqs. (1)–(2): V = π·B·((m·z)²/4 − r²)."""
 
@@ -107,7 +108,7 @@ class GearGeometry(_Shape):
                              f"root radius m·z/2 − 1.25·m = {root:g} mm", f"{path}.bore_radius")
 
 
-@dataclass(frozen=True)
+@record
 class CycloidDiscGeometry(_Shape):
     """Cycloid disc, Eq. (3): V = π·B2·[(r_p − r_rp)² − n8·(r8 + a)² − n3·r3² − r4²]."""
 
@@ -150,7 +151,7 @@ class CycloidDiscGeometry(_Shape):
                              f"(z_p = teeth + 1 = {teeth + 1})", f"{path}.eccentricity")
 
 
-@dataclass(frozen=True)
+@record
 class NeedleGearGeometry(_Shape):
     """Needle gear (pin ring), Eq. (4): V = W·[π((r_p + t)² − r_p²) + z·π·r_rp²/2]."""
 
@@ -177,7 +178,7 @@ class NeedleGearGeometry(_Shape):
                              f"{path}.pin_radius")
 
 
-@dataclass(frozen=True)
+@record
 class CrankshaftGeometry(_Shape):
     """Crankshaft, Eq. (5): V = π·r2²·(B1 + 2·B3) + n·π·r5²·B2."""
 
@@ -192,7 +193,7 @@ class CrankshaftGeometry(_Shape):
     journals: int = _count("number of eccentric journals (paper: 2)", "2")
 
 
-@dataclass(frozen=True)
+@record
 class PlanetFrame1Geometry(_Shape):
     """Planet frame I (end plate), Eq. (6): V = π·r6²·B4 − n·π·r7²·B3."""
 
@@ -212,7 +213,7 @@ class PlanetFrame1Geometry(_Shape):
                              f"{path}.crank_bearing_width")
 
 
-@dataclass(frozen=True)
+@record
 class PlanetFrame2Geometry(_Shape):
     """Planet frame II, Eq. (7) (see :mod:`powergraph.analyses.volume.formulas`)."""
 

@@ -36,20 +36,20 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.gears.cycloid_loss import (CrankBearing, CycloidLoss, OutputPins, PinContact,
                                            PinRing, cycloid_mesh_loss)
 from powergraph.model.units import parse_quantity
+from powergraph.records import record
 
 PIN_BLOCKS = ("pins", "output_pins", "crank_bearing")
 _STAGE = (("radius", "pin_radius"), ("circle_radius", "pin_circle_radius"),
           ("eccentricity", "eccentricity"))
 
 
-@dataclass(frozen=True)
+@record
 class CycloidFriction:
     """A cycloid mesh's friction law: constant, from its pin ring (and output mechanism
     and crank bearing). ``gear_1`` is the disc; ``pitch_radius`` (mm) is the disc's pitch

@@ -25,15 +25,15 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 from powergraph.errors import ModelError
 from powergraph.model.distributions import Distribution, parse_distribution
 from powergraph.model.tolerance_paths import DOMAINS, Target, place_of, resolve_path
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class Tolerance:
     """One toleranced value: where it is and how it is distributed."""
 
@@ -45,7 +45,7 @@ class Tolerance:
         return self.target.path
 
 
-@dataclass(frozen=True)
+@record
 class Tolerances:
     """Every toleranced value of a model, in file order."""
 

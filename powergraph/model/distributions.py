@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
@@ -42,13 +41,14 @@ import numpy as np
 from powergraph.errors import ModelError, UsageError
 from powergraph.gears.iso286 import GRADES, iso_tolerance
 from powergraph.model.units import parse_number
+from powergraph.records import record
 
 FORMS = ("{distribution: uniform, min, max}", "{distribution: normal, mean, sd[, low, high]}",
          "{nominal, tolerance}", "{nominal, grade, size}")
 KINDS = ("uniform", "normal", "constant")
 
 
-@dataclass(frozen=True)
+@record
 class Distribution:
     """One toleranced value's distribution.
 

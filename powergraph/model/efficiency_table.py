@@ -21,12 +21,12 @@ from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from powergraph.errors import ModelError
+from powergraph.records import record
 from powergraph.units_si import RAD_S_PER_RPM
 
 #: Header names accepted for each column, with the factor to SI (rad/s, N·m).
@@ -36,7 +36,7 @@ TORQUE_COLUMNS = {"torque [n·m]": 1.0, "torque [nm]": 1.0, "torque [n*m]": 1.0}
 MAX_ROWS = 250_000
 
 
-@dataclass(frozen=True)
+@record
 class EfficiencyTable:
     """Efficiency ``values[i][j]`` at speed ``speeds[i]`` (rad/s) and torque
     ``torques[j]`` (N·m), both ascending and >= 0; ``source`` is the file as written."""

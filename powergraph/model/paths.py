@@ -19,16 +19,16 @@ A PATH names one number of the model file (docs/format.md):
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 LINK_FIELDS = ("efficiency", "ratio")
 PORT_FIELDS = ("speed", "power", "torque")
 
 
-@dataclass(frozen=True)
+@record
 class Parameter:
     """One swept model value: the ``path`` as the user wrote it (the CSV column name), its
     ``kind`` (``teeth``, ``efficiency``, ``ratio``, ``speed``, ``power`` or ``torque``) and

@@ -8,10 +8,12 @@ Component ids are compared as strings: ``Component.id`` is the string form and
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Mapping
+
+from powergraph.records import record
 
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.model.efficiency_table import EfficiencyTable
@@ -22,7 +24,7 @@ LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
 SHIFT_TYPES = ("clutch", "brake", "freewheel")
 
 
-@dataclass(frozen=True)
+@record
 class Component:
     """One numbered part of the train (a gear, shaft, carrier, the housing...)."""
 
@@ -48,7 +50,7 @@ class Component:
         return f"{self.raw_id} ({self.name})" if self.name else str(self.raw_id)
 
 
-@dataclass(frozen=True)
+@record
 class Link:
     """One edge of the graph: a mesh, a fixed joint, a coupling or a bearing.
 
@@ -74,7 +76,7 @@ class Link:
         return f"links[{self.index}]"
 
 
-@dataclass(frozen=True)
+@record
 class ShiftElement:
     """A clutch, brake or freewheel (docs/modes.md), as written at ``links[index]``.
 
@@ -98,7 +100,7 @@ class ShiftElement:
         return f"links[{self.index}]"
 
 
-@dataclass(frozen=True)
+@record
 class Port:
     """Where power enters (``input``) or leaves (``output``) the train."""
 
@@ -123,7 +125,7 @@ class Port:
         return self.role == "machine"
 
 
-@dataclass(frozen=True)
+@record
 class Bus:
     """An electrical bus joining machine ports; ``battery`` is the battery's power into
     the bus (W), None when free (docs/hybrid.md)."""
@@ -136,7 +138,7 @@ class Bus:
         return f"buses.{self.name}"
 
 
-@dataclass(frozen=True)
+@record
 class Body:
     """Components joined by ``fixed`` links: one rigid body with one speed."""
 
@@ -145,7 +147,7 @@ class Body:
     is_frame: bool = False
 
 
-@dataclass(frozen=True)
+@record
 class Model:
     """A validated gear train. Immutable: solvers return new objects, never edit it."""
 

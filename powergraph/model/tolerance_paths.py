@@ -36,11 +36,11 @@ Target(path='links[0].backlash_arcmin', kind='backlash_arcmin', links=(0,), key=
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from powergraph.errors import ModelError, PowerGraphError
 from powergraph.model.paths import parse_path
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 #: kind -> (domain low, domain high, low bound excluded, is a length)
 DOMAINS = {
@@ -57,7 +57,7 @@ UNITS = {"efficiency": "", "backlash_arcmin": "arcmin", "measured_M": "mm", "run
          "bearing_clearance": "mm", "profile_error": "mm"}
 
 
-@dataclass(frozen=True)
+@record
 class Target:
     """One toleranced model value.
 

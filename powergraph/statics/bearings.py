@@ -49,7 +49,6 @@ from __future__ import annotations
 import numpy as np
 
 import dataclasses
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -57,13 +56,14 @@ from powergraph.kinematics.elements import gear_torque
 from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.graph import unique_name
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.equilibrium import Loads, loads_of
 
 #: Relative speeds below this fraction of the two bodies' speeds are zero.
 SPEED_NOISE = 1e-12
 
 
-@dataclass(frozen=True)
+@record
 class BearingState:
     """One bearing (``kind="bearing"``) or body drag (``kind="drag"``) at the solution.
 

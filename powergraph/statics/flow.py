@@ -21,11 +21,11 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import total_ordering
 from typing import TYPE_CHECKING
 
 from powergraph.model.graph import unique_name
+from powergraph.records import record
 
 if TYPE_CHECKING:
     import networkx as nx
@@ -41,7 +41,7 @@ KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "drag", MOTOR, GENERATOR, L
 
 
 @total_ordering
-@dataclass(frozen=True)
+@record
 class Node:
     """A node of the flow graph: its ``kind`` (one of :data:`KINDS`) and its ``name``.
 
@@ -64,7 +64,7 @@ class Node:
         return (self.name, self.kind) < (other.name, other.kind)
 
 
-@dataclass(frozen=True)
+@record
 class Flow:
     """One arrow of the flow graph: ``power`` W (>= 0) from ``source`` to ``target``.
 

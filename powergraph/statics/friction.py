@@ -17,7 +17,6 @@ constant efficiency; drags alone need one more pass.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Callable, Mapping
 
@@ -26,11 +25,12 @@ import numpy as np
 from powergraph.errors import ModelError, SolveError
 from powergraph.kinematics.elements import gear_torque
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 MAX_PASSES = 60
 
 
-@dataclass(frozen=True)
+@record
 class MeshFrictionState:
     """One friction mesh at the solution: its load, speed, coefficient and efficiency.
 

@@ -10,13 +10,13 @@ with the contradiction its two possible drivers meet.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 from powergraph.kinematics import Element
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.directions import Pattern, agrees, describe, factor_of, pattern_of
 from powergraph.statics.equilibrium import Loads
 from powergraph.statics.search import (
@@ -31,7 +31,7 @@ from powergraph.statics.search import (
 ForceSolver = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 
 
-@dataclass(frozen=True)
+@record
 class Candidate:
     """A confirmed consistent solution: its pattern, factors and total loss (W)."""
 
@@ -40,7 +40,7 @@ class Candidate:
     loss: float
 
 
-@dataclass(frozen=True)
+@record
 class Decision:
     """What the search decided: the chosen solution (None when locked) and the facts."""
 

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
@@ -27,6 +26,7 @@ from powergraph.errors import Caveat, StaticsError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.efficiency_table import EfficiencyTable
 from powergraph.model.spec import Model, Port
+from powergraph.records import record
 from powergraph.units_si import rpm
 
 #: Newton iterations on the bus balances before giving up.
@@ -58,7 +58,7 @@ def machine_efficiency(port: Port, speed: float, torque: float) -> tuple[float, 
     return port.efficiency, True
 
 
-@dataclass(frozen=True)
+@record
 class MachineFlow:
     """One machine at the solved point: speed (rad/s), torque on the train (N·m),
     mechanical ``power`` into the train and ``electrical_power`` drawn from its bus (W,
@@ -92,7 +92,7 @@ class MachineFlow:
                 "loss": self.loss, "efficiency": self.efficiency}
 
 
-@dataclass(frozen=True)
+@record
 class BusFlow:
     """A bus at the solved point: the battery's power into it (W; given or, for a free
     battery, what the machines draw)."""

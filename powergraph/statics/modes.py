@@ -24,7 +24,7 @@ Examples
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -32,6 +32,7 @@ from powergraph.errors import Caveat, KinematicsError, ModelError
 from powergraph.kinematics.speeds import degrees_of_freedom
 from powergraph.model.modes import engaged_in, mode_path, resolve
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.bearings import relative_speed
 from powergraph.statics.shift_torques import component_torques, joint_torque
 
@@ -41,7 +42,7 @@ ZERO = 1e-9
 MAX_FREEWHEELS = 10
 
 
-@dataclass(frozen=True)
+@record
 class ShiftState:
     """One shift element in a mode.
 
@@ -68,7 +69,7 @@ class ShiftState:
                 "slip_speed": self.slip_speed, "drag_loss": self.drag_loss}
 
 
-@dataclass(frozen=True)
+@record
 class ModeResult:
     """A train solved in one mode: the power-flow result (None when no freewheel state is
     consistent, see ``verdict``), its shift elements and caveats."""

@@ -20,12 +20,12 @@ True
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
 import numpy as np
 
 from powergraph.errors import Caveat
+from powergraph.records import record
 from powergraph.statics.directions import nan_max
 
 if TYPE_CHECKING:   # pragma: no cover
@@ -37,7 +37,7 @@ ABSOLUTE_ZERO = 1e-12
 WARN_FRACTION = 1e-9
 
 
-@dataclass(frozen=True)
+@record
 class PortFlow:
     """What happens at one port: its speed, the torque on the train there and the power.
 

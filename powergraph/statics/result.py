@@ -4,17 +4,18 @@ The JSON object of ``powergraph solve --json`` is described in docs/format.md.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any, Mapping
 
 from powergraph.errors import Caveat
 from powergraph.kinematics import Kinematics
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.ports import PortFlow, flow_efficiency, port_flows, result_caveats
 
 
-@dataclass(frozen=True)
+@record
 class ElementFlow:
     """Torques, direction and loss of one mesh or coupling.
 
@@ -39,7 +40,7 @@ class ElementFlow:
     loss: float
 
 
-@dataclass(frozen=True)
+@record
 class Lock:
     """Why a train cannot move as asked under its loads (docs/locking.md).
 
@@ -62,7 +63,7 @@ class Lock:
                 "holding_torques": "lossless equilibrium (one of the static-friction set)"}
 
 
-@dataclass(frozen=True)
+@record
 class DirectionSearch:
     """How the power directions were found when the fixed-point iteration cycled.
 
@@ -81,7 +82,7 @@ class DirectionSearch:
                 "chosen": "least total loss" if self.solutions > 1 else None}
 
 
-@dataclass(frozen=True)
+@record
 class PowerFlowResult:
     """Everything a virtual-power solve finds (docs/theory.md, docs/locking.md).
 

@@ -22,13 +22,13 @@ Candidates are confirmed by the caller with the project's own torque balance.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
 
 import numpy as np
 
 from powergraph.kinematics import Element
 from powergraph.kinematics.system import TrainSystem, system_of
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.directions import factors_for
 from powergraph.statics.equilibrium import Loads
 
@@ -38,7 +38,7 @@ EXHAUSTIVE_LIMIT = 12
 MAX_LPS = 4000
 
 
-@dataclass(frozen=True)
+@record
 class Statics:
     """The torque balance in a form the searches share: body rows, load columns."""
 
@@ -119,7 +119,7 @@ def enumerate_patterns(st: Statics) -> list[tuple[int, ...]] | None:
     return [tuple(int(c) for c in codes[i]) for i in np.flatnonzero(ok)]
 
 
-@dataclass(frozen=True)
+@record
 class LPSolution:
     """A complementary solution of the rays' linear program."""
 

@@ -18,12 +18,13 @@ the paper's "T = Z2/(Z1 − Z2) = 20 r" for Z1 = 45, Z2 = 40 is 8 by its own for
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from powergraph.records import record
 
-@dataclass(frozen=True)
+
+@record
 class CentreDistanceCurve:
     """|AB| (mm) against the eccentric's angle, in turns; Eq. (5)/(6) bounds."""
 

@@ -19,7 +19,7 @@ Readings of the paper (see also the package docstring):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from types import MappingProxyType
 from typing import Mapping
 
@@ -30,6 +30,7 @@ from powergraph.analyses.backlash.involute import (
     standard_centre_distance,
     working_pressure_angle,
 )
+from powergraph.records import record
 
 #: Arc-minutes per radian (Eq. 1 is j_t / r in radians, times this).
 ARCMIN_PER_RAD = 180.0 * 60.0 / math.pi
@@ -76,7 +77,7 @@ def eccentric_offset(no_backlash_distance: float, runout: tuple[float, ...],
     return no_backlash_distance - sum(runout) / 2.0 + sum(bearing_clearance) / 2.0
 
 
-@dataclass(frozen=True)
+@record
 class PairBacklash:
     """Backlash of one internal pair. Lengths in mm, angles in degrees, lost motion in
     arc-minutes of the internal gear (Eq. 1). Per-gear mappings are keyed by gear id;

@@ -18,18 +18,19 @@ parts in parallel do not add up.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from powergraph.analyses.backlash.pair import PairBacklash, analyse_pair, lost_motion_arcmin
 from powergraph.errors import KinematicsError, ModelError, UsageError
 from powergraph.kinematics import solve_speeds
 from powergraph.model.spec import Link, Model
+from powergraph.records import record
 from powergraph.result import nothing_to_draw
 from powergraph.display import Displayed
 
 
-@dataclass(frozen=True)
+@record
 class MeshBacklash:
     """One mesh's play and its share of the output's lost motion (arc-minutes)."""
 
@@ -64,7 +65,7 @@ class MeshBacklash:
         return data
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class BacklashReport(Displayed):
     """Per-mesh backlash and the output's lost motion (arc-minutes) of one model."""
 

@@ -8,7 +8,6 @@ by least squares with the paper's surface ``Δi = a·d + b·d·z1^−1.5`` (Δi 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -18,6 +17,7 @@ from powergraph.analyses.cycloid.fluctuation import cycloid_fluctuation
 from powergraph.analyses.cycloid.report import study_text
 from powergraph.errors import UsageError
 from powergraph.gears.iso286 import GRADES, LARGEST_SIZE, profile_error_for_grade
+from powergraph.records import record
 
 #: Disc teeth of the paper's grid (Table 3).
 PAPER_TEETH = (9, 25, 43, 53, 117)
@@ -28,7 +28,7 @@ PAPER_FITS = {1: (6.842, 3351.9), 2: (3.464, 1720.82), 3: (2.293, 1156.47),
 _STUDY_POINTS = 8
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class FluctuationStudy:
     """Maximum fluctuation over the paper's grid for one module, and the refit.
 

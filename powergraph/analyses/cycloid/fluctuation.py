@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -12,6 +11,7 @@ from powergraph.analyses.cycloid.geometry import CycloidGeometry, cycloid_geomet
 from powergraph.analyses.cycloid.report import stage_text
 from powergraph.errors import UsageError
 from powergraph.display import Displayed
+from powergraph.records import record
 
 #: Samples of the crank angle per contact segment (a segment is 2π/z2 of crank angle).
 POINTS_PER_SEGMENT = 32
@@ -19,7 +19,7 @@ POINTS_PER_SEGMENT = 32
 PAPER_STEP_DEG = 2.0
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@record(eq=False, repr=False)
 class CycloidFluctuation(Displayed):
     """Ratio of a cycloid stage over one input (crank) revolution.
 

@@ -20,13 +20,14 @@ Lengths are in mm, angles in radians.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 
 import numpy as np
 
 from powergraph.errors import UsageError
 from powergraph.gears.cycloid import smallest_convex_radius as _smallest
 from powergraph.gears.cycloid import trochoid as _trochoid
+from powergraph.records import record
 
 #: Samples of one tooth used to find the trochoid's largest curvature (undercut check).
 _CURVATURE_SAMPLES = 2001
@@ -34,7 +35,7 @@ _CURVATURE_SAMPLES = 2001
 MAX_TEETH = 5000
 
 
-@dataclass(frozen=True)
+@record
 class CycloidGeometry:
     """A cycloid disc and its pin ring.
 

@@ -28,7 +28,6 @@ is not used: identical discs at crank phases 2π/count apart see the same fluctu
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -38,13 +37,14 @@ from powergraph.analyses.cycloid.fluctuation import (CycloidFluctuation, read_on
 from powergraph.analyses.cycloid.report import train_text
 from powergraph.errors import ModelError, UsageError
 from powergraph.kinematics import solve_speeds, willis_ratio
+from powergraph.records import record
 from powergraph.result import nothing_to_draw
 
 #: Samples of the input angle per period of the stage's fluctuation (at least 360 in all).
 SAMPLES_PER_PERIOD = 32
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class StageAtOutput:
     """One cycloid mesh's fluctuation, at the stage and at the train's output.
 
@@ -102,7 +102,7 @@ class StageAtOutput:
         }
 
 
-@dataclass(frozen=True)
+@record
 class TrainFluctuation:
     """The fluctuation of every cycloid mesh of a train, carried to its output."""
 

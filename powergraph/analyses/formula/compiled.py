@@ -1,16 +1,16 @@
 """Closed forms compiled to numpy (``sympy.lambdify``) for fast, vectorised sweeps."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
 
 from powergraph.errors import UsageError
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class CompiledFormula:
     """Ratio, efficiency and validity of one train as one numpy function.
 

@@ -2,7 +2,7 @@
 for, the conditions that keep that pattern, and fast numeric evaluation."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any, Mapping
 
@@ -12,6 +12,7 @@ from powergraph.analyses.formula.compiled import CompiledFormula, compile_formul
 from powergraph.analyses.formula.readable import display
 from powergraph.analyses.formula.symbols import SymbolInfo, values_of
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 _FLIP = {">": "<", "<": ">", "!=": "!=", "=": "="}
 _LATEX_RELATION = {">": ">", "<": "<", "!=": r"\neq", "=": "="}
@@ -30,7 +31,7 @@ def latex_names(symbols: Mapping[str, sp.Symbol],
     return out
 
 
-@dataclass(frozen=True)
+@record
 class Direction:
     """Who drives one lossy element in its carrier's frame, at the model's values."""
 
@@ -50,7 +51,7 @@ class Direction:
                 "factor": str(self.factor)}
 
 
-@dataclass(frozen=True)
+@record
 class Condition:
     """``expression relation 0`` must hold for the formulas to stay valid.
 
@@ -98,7 +99,7 @@ class Condition:
                 "latex": self.latex(names)}
 
 
-@dataclass(frozen=True)
+@record
 class FormulaResult:
     """Closed-form ratio and efficiency of one train.
 

@@ -14,7 +14,6 @@ Characters of a component id that cannot appear in a Python identifier become ``
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 import sympy as sp
@@ -22,11 +21,12 @@ import sympy as sp
 from powergraph.errors import UsageError
 from powergraph.kinematics import Element
 from powergraph.model.spec import Model
+from powergraph.records import record
 
 TEETH, EFFICIENCY, RATIO = "teeth", "efficiency", "ratio"
 
 
-@dataclass(frozen=True)
+@record
 class SymbolInfo:
     """What one symbol stands for, and its value in the model."""
 
@@ -58,7 +58,7 @@ class SymbolInfo:
         return out
 
 
-@dataclass(frozen=True)
+@record
 class SymbolTable:
     """Symbols, their meaning, and each element's symbolic Willis quotient and efficiency."""
 

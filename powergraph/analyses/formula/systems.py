@@ -18,7 +18,6 @@ in docs/theory.md.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Hashable, Mapping, Sequence
 
 import numpy as np
@@ -26,9 +25,10 @@ import sympy as sp
 
 from powergraph.kinematics.elements import element_stencil
 from powergraph.kinematics.system import TrainSystem
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class TrainSystems:
     """The two linear systems of a train, ``matrix · unknowns = rhs``.
 

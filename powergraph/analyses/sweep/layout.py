@@ -3,12 +3,12 @@ once from the model and the swept PATHs and validated on a probe solve, and the 
 values of what varies (:func:`base_values`)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
 from powergraph.analyses.sweep.paths import Parameter
 from powergraph.kinematics import degrees_of_freedom, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.equilibrium import loads_of, solve_equilibrium
 
 
@@ -21,7 +21,7 @@ class Load(NamedTuple):
     role: str      # "input" or "output"
 
 
-@dataclass(frozen=True)
+@record
 class Layout:
     """What a sweep keeps fixed: the train's structure, as indices into ``model.bodies``.
 

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import io
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any, Mapping
 
@@ -10,6 +9,7 @@ import numpy as np
 
 from powergraph.format import csv_header
 from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
+from powergraph.records import record
 
 #: Status codes of a variant (``SweepResult.status``), by value.
 STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
@@ -24,7 +24,7 @@ COLUMN_UNITS = {"ratio": "-", "efficiency": "-", "input_power": "W", "output_pow
                 "torque": "N*m", "formal_efficiency": "-"}
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class SweepResult(Displayed):
     """Ratio, efficiency, losses and flags of every variant of a sweep.
 

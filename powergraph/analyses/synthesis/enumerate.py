@@ -11,12 +11,12 @@ For one degree of freedom this reproduces Yang & Ding (2019)'s counts.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.errors import UsageError
 from powergraph.display import Displayed
+from powergraph.records import record
 
 #: Published counts ``{dof: {links: (r-graphs, d-graphs)}}``: Yang W. & Ding H., "The
 #: complete set of one-degree-of-freedom planetary gear trains with up to nine links",
@@ -26,7 +26,7 @@ PUBLISHED = {1: {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837)}}
 MAX_LINKS = 9
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class EnumerationResult(Displayed):
     """The displacement graphs of one size, with the rotation graph each one has.
 

@@ -20,11 +20,12 @@ K-H-V (cycloid) stage; each removes one degree of freedom like a gear pair.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
+from powergraph.records import record
 
-@dataclass(frozen=True)
+
+@record
 class TrainGraph:
     """A planetary gear train as a graph (see the module docstring).
 

@@ -16,7 +16,7 @@ each arrangement's best tooth set), meshes, and largest virtual power.
 """
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, field
 from typing import Any, Mapping
 
 import numpy as np
@@ -25,9 +25,10 @@ from powergraph.analyses.synthesis.naming import (arrangement_name, gear_names, 
                                                   teeth_text)
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.analyses.synthesis.teeth import Layout
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class SynthesisRow:
     """One arrangement at its best tooth set, with the ``compare`` table's figures.
 

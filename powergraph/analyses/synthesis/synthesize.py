@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
 from typing import Any, Iterable, Sequence
 
 from powergraph.analyses.parallel import cluster
@@ -29,6 +28,7 @@ from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts, search_range
 from powergraph.errors import UsageError
+from powergraph.records import record
 from powergraph.result import aligned_table
 from powergraph.display import Displayed
 from powergraph.format import format_ratio
@@ -39,7 +39,7 @@ CHUNK = 1 << 20
 MAX_GRID = 4_000_000
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class SynthesisResult(Displayed):
     """Ranked trains of ratio ``ratio`` (within ``tolerance``, relative).
 

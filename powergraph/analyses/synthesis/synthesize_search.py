@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import copy
 import functools
-from dataclasses import dataclass
 from typing import Any, Callable
 
 import numpy as np
@@ -32,12 +31,13 @@ import numpy as np
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.teeth import Layout, layouts
 from powergraph.gears.planetary import assembles, planets_meet, relative_turns
+from powergraph.records import record
 
 #: Grid points evaluated at once (bounds the memory of a search).
 SUB_CHUNK = 1 << 17
 
 
-@dataclass(frozen=True)
+@record
 class Hits:
     """Tooth sets of one arrangement (graph, layout, fixed, input, output) within the
     tolerance and feasible: ``flat`` indices into the layout's grid."""

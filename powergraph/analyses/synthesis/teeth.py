@@ -28,7 +28,6 @@ from __future__ import annotations
 import functools
 import itertools
 from collections import Counter
-from dataclasses import dataclass
 from typing import Iterator, Mapping
 
 import numpy as np
@@ -37,6 +36,7 @@ from powergraph.analyses.synthesis.graph import TrainGraph
 # The conditions themselves (one copy, shared with the model's feasibility caveats):
 from powergraph.gears.planetary import assembles, neighbours_clear  # noqa: F401
 from powergraph.gears.planetary import centre_distance as planet_centre
+from powergraph.records import record
 
 #: Smallest tooth difference of an internal involute pair (ring - planet).
 MIN_INTERNAL_DIFFERENCE = 10
@@ -44,7 +44,7 @@ MIN_INTERNAL_DIFFERENCE = 10
 KHV_DIFFERENCE = 1
 
 
-@dataclass(frozen=True)
+@record
 class Structure:
     """Which links turn about the main axis, what each planet turns on, each pair's kind.
 
@@ -101,7 +101,7 @@ def structure(graph: TrainGraph) -> Structure | None:
     return Structure(main, tuple(coaxial), parent, coupled, tuple(kinds), tuple(sides))
 
 
-@dataclass(frozen=True)
+@record
 class PlanetBlock:
     """The tooth variables of one replicated planet link: its steps and an anchor.
 
@@ -121,7 +121,7 @@ class PlanetBlock:
         return next(i for i, s in enumerate(self.steps) if pair in s)
 
 
-@dataclass(frozen=True)
+@record
 class Layout:
     """One way of giving a graph teeth: planet blocks, K-H-V rings, internal gears."""
 

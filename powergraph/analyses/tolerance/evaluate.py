@@ -29,6 +29,7 @@ import numpy as np
 
 from powergraph.model.block_tolerances import Tolerances
 from powergraph.errors import ModelError
+from powergraph.records import record
 
 #: Nodes of the fluctuation table over the support of the profile error.
 TABLE_NODES = 6
@@ -150,7 +151,7 @@ class ToleranceEvaluator:
         return worst
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class FluctuationTable:
     """The train's fluctuation (%) of one cycloid mesh against its profile error (mm)."""
 

@@ -1,7 +1,7 @@
 """The result of a tolerance analysis: a frozen dataclass with JSON, text and plot."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any, Mapping
 
 import numpy as np
@@ -9,6 +9,7 @@ import numpy as np
 from powergraph.analyses.tolerance.stats import QUANTILES, Yield
 from powergraph.format import aligned_table, format_fixed, format_number
 from powergraph.display import Displayed
+from powergraph.records import record
 
 LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
           "fluctuation_percent": ("ratio fluctuation", "%"),
@@ -17,7 +18,7 @@ LABELS = {"lost_motion_arcmin": ("lost motion", "arcmin"),
 PRIMARY = ("lost_motion_arcmin", "fluctuation_percent", "efficiency")
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@record(eq=False, repr=False)
 class ToleranceResult(Displayed):
     """Outputs of ``samples`` sampled units, yields of the specifications, sensitivities.
 

@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 
 import numpy as np
 
 from powergraph.errors import UsageError
+from powergraph.records import record
 
 #: Two-sided 95 % normal quantile.
 Z95 = 1.959963984540054
@@ -41,7 +41,7 @@ SPEC_OUTPUTS = {
 _SPEC = re.compile(r"^\s*([a-z_]+)\s*(<=|>=|<|>)\s*([-+0-9.eE]+)\s*(\S*)\s*$")
 
 
-@dataclass(frozen=True)
+@record
 class Spec:
     """One specification: ``output op value`` (value in the output's own unit)."""
 
@@ -99,7 +99,7 @@ def wilson_interval(successes: int, n: int, z: float = Z95) -> tuple[float, floa
     return low, high
 
 
-@dataclass(frozen=True)
+@record
 class Yield:
     """The fraction of units meeting a specification, with its 95 % Wilson interval."""
 

@@ -23,16 +23,16 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 from typing import Iterable
 
 import numpy as np
 
 from powergraph.analyses.volume.polygon import shoelace_area
+from powergraph.records import record
 
 
-@dataclass(frozen=True)
+@record
 class BasicRack:
     """Basic rack of the generating cutter, per unit module (ISO 53 profile A by default).
 
@@ -201,7 +201,7 @@ def pitch_circle_error(teeth: int, rack: BasicRack = STANDARD_RACK) -> float:
     return (pitch_circle_area(1.0, teeth) - exact) / exact
 
 
-@dataclass(frozen=True)
+@record
 class ProfileErrorTable:
     """Pitch-circle vs exact-profile areas for a range of tooth numbers (unit module)."""
 

@@ -1,9 +1,9 @@
 """Result objects of the volume analysis (frozen, indexed by the model's component ids)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
+from powergraph.records import record
 from powergraph.result import aligned_table, nothing_to_draw
 from powergraph.display import Displayed
 
@@ -11,7 +11,7 @@ from powergraph.display import Displayed
 POWER_DENSITY_UNIT = "kW/L"
 
 
-@dataclass(frozen=True)
+@record
 class ComponentVolume:
     """Volume of one component (all ``count`` identical parts).
 
@@ -66,7 +66,7 @@ class ComponentVolume:
                 "profile_error": self.profile_error}
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class VolumeResult(Displayed):
     """Volumes of every component that has a ``geometry`` block, and the total (Eq. 8).
 

@@ -13,10 +13,11 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Callable, Sequence
 
 import numpy as np
+
+from powergraph.records import record
 
 #: (text, font size in points) -> (width, height) in points.
 TextSize = Callable[[str, float], "tuple[float, float]"]
@@ -32,7 +33,7 @@ def estimate_text_size(text: str, size: float) -> tuple[float, float]:
             round(len(lines) * 1.25 * size, 2))
 
 
-@dataclass(frozen=True)
+@record
 class Box:
     """An axis-aligned rectangle ``[x0, x1] × [y0, y1]`` in points."""
 
@@ -66,7 +67,7 @@ class Box:
         return ((self.x0 + self.x1) / 2, (self.y0 + self.y1) / 2)
 
 
-@dataclass(frozen=True)
+@record
 class Shape:
     """Size of a node's symbol and of its caption (if written under the symbol).
 

@@ -38,7 +38,7 @@ and the loss sinks under elements are nodes of kinds no flow-graph node has (``w
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Mapping
 
 import networkx as nx
@@ -48,12 +48,13 @@ from powergraph.plot.layout.geometry import (Box, Shape, TextSize, estimate_text
                                                head_polygon, trim_end)
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.view import FlowView
+from powergraph.records import record
 from powergraph.statics.flow import LOSS, Flow, Node
 
 WAYPOINT, LOSS_STUB = "waypoint", "loss stub"
 
 
-@dataclass(frozen=True)
+@record
 class LayoutStyle:
     """Sizes in points. ``font_size`` is the node font; labels use ``label_scale`` of it."""
 
@@ -79,7 +80,7 @@ class LayoutStyle:
         return (5.0 + 0.7 * width, 2.8 + 0.6 * width)
 
 
-@dataclass(frozen=True)
+@record
 class NodePlace:
     """A drawn node: its symbol centred at ``(x, y)``, its caption underneath if any;
     ``kind`` is the kind drawn (a held body is drawn as ``frame``)."""
@@ -112,7 +113,7 @@ class NodePlace:
         return (self.box,) if caption is None else (self.box, caption)
 
 
-@dataclass(frozen=True)
+@record
 class EdgeRoute:
     """One arrow: the path from ``flow.source`` to ``flow.target`` and its label spot."""
 
@@ -148,7 +149,7 @@ class EdgeRoute:
         return trim_end(self.vertices, self.codes, self.head_size[0] * 0.9)
 
 
-@dataclass(frozen=True)
+@record
 class FlowLayout:
     """Positions of every node, arrow and label of one diagram (points)."""
 
@@ -169,7 +170,7 @@ class FlowLayout:
         return NodeMap({e.key: e for e in self.edges})[(source, target)]
 
 
-@dataclass(frozen=True)
+@record
 class Skeleton:
     """The combinatorial layout: layers (top to bottom), arrow chains, loss stubs."""
 

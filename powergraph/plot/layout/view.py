@@ -18,19 +18,19 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any, Mapping
 
 import networkx as nx
 
 from powergraph.errors import UsageError
 from powergraph.plot.layout.nodes import NodeMap
+from powergraph.records import record
 from powergraph.statics.flow import (BODY, FRAME, GENERATOR, GROUND, KINDS, LOSS, MOTOR, Flow,
                                      Node, circulating_power)
 from powergraph.format import format_power, format_share  # noqa: F401  (re-exported)
 
 
-@dataclass(frozen=True)
+@record
 class FlowView:
     """The content of one power-flow diagram (no geometry).
 
