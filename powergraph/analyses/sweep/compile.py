@@ -25,7 +25,8 @@ from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.layout import Layout, base_values, layout_of
 from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_all,
                                              check_values, parse_paths)
-from powergraph.analyses.sweep.result import CYCLE, LOCKED, OK, UNSETTLED, SweepResult
+from powergraph.analyses.sweep.result import (CYCLE, LOCKED, OK, UNSETTLED, SweepResult,
+                                             converged_of)
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
 from powergraph.statics import PowerFlowResult, solve
@@ -166,7 +167,8 @@ class CompiledSweep:
                 for path, a in arrays.items()}
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
-        rest = None if kernels is None else self._run_kernels(kernels, flat, outputs)
+        rest, converged = (None, None) if kernels is None else self._run_kernels(kernels, flat,
+                                                                                 outputs)
         if kernels is not None and (rest is None or rest.size):
             check_all(self.parameters, arrays)    # a variant left may hold a value not allowed
         if rest is None:
@@ -176,8 +178,9 @@ class CompiledSweep:
             self._run_chunks({path: value[rest] if value.ndim else value
                               for path, value in flat.items()}, part, step, quiet)
             outputs.put(rest, part, slice(None))
+            converged[rest] = converged_of(part.status)
         return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
-                              self.backend.name)
+                              self.backend.name, converged)
 
     evaluate = __call__
 
@@ -198,12 +201,17 @@ class CompiledSweep:
                 self._closed_forms.sort(key=lambda form: -form.hits)
                 update(stop - start)
 
-    def _run_kernels(self, kernels, flat: dict, outputs: Outputs) -> np.ndarray | None:
+    def _run_kernels(self, kernels, flat: dict,
+                     outputs: Outputs) -> tuple[np.ndarray | None, np.ndarray | None]:
         """The closed forms' numba kernels over every variant, written straight into
-        ``outputs`` (the first form's over all of them, each next one's over those left);
-        the indices of the variants none took, or None when a kernel does not compile or
-        run (then numpy evaluates every variant)."""
-        rest = None          # the variants not taken yet (None: all)
+        ``outputs`` (the first form's over all of them, each next one's over those left).
+
+        Returns the indices of the variants none took, or None when a kernel does not
+        compile or run (then numpy evaluates every variant); and where a kernel took the
+        variant, the first kernel's ``valid`` array (a kernel's variant is ``ok``: this is
+        ``converged`` but for the variants left, saving a pass over ``status``).
+        """
+        rest = taken = None          # the variants not taken yet (None: all)
         swept = [flat[param.path] for param in self.parameters]
         for form in list(self._closed_forms):
             key = (form.start, form.codes)
@@ -212,10 +220,10 @@ class CompiledSweep:
                     self._kernels[key] = kernels.Kernel(
                         form, lambda scalar: self._input_lines(kernels, scalar))
                 if self._kernels[key] is None:
-                    return None
+                    return None, None
                 if rest is None:
-                    valid, rejected = self._kernels[key](swept, outputs)
-                    rest = np.flatnonzero(~valid) if rejected else np.empty(0, np.int64)
+                    taken, rejected = self._kernels[key](swept, outputs)
+                    rest = np.flatnonzero(~taken) if rejected else np.empty(0, np.int64)
                     form.hits += outputs.status.size - rest.size
                     if rest.size == 0:
                         break
@@ -228,14 +236,15 @@ class CompiledSweep:
                     f"the sweep's numba kernel failed ({type(error).__name__}: {error}); "
                     "evaluating with numpy"), stacklevel=3)
                 self._kernels[key] = None
-                return None
+                return None, None
             outputs.put(rest[valid], part, valid)
+            taken[rest[valid]] = True
             form.hits += int(np.count_nonzero(valid))
             rest = rest[~valid]
             if rest.size == 0:
                 break
         self._closed_forms.sort(key=lambda form: -form.hits)
-        return rest
+        return rest, taken
 
     def _input_lines(self, kernels, scalar: tuple[bool, ...]) -> tuple[list, list]:
         return (kernels.input_lines(self.layout, self.parameters, self._base, self._element,

@@ -107,10 +107,12 @@ class SweepResult(Displayed):
 
     @classmethod
     def of(cls, name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
-           outputs: Any, links: tuple[int, ...], backend: str) -> "SweepResult":
+           outputs: Any, links: tuple[int, ...], backend: str,
+           converged: np.ndarray | None = None) -> "SweepResult":
         """The result of a run from its swept ``arrays`` and its flat ``outputs``
         (:class:`~powergraph.analyses.sweep.evaluate.Outputs`, whose ``efficiency`` is
-        already the flow efficiency reported here), shaped to ``shape``."""
+        already the flow efficiency reported here), shaped to ``shape``; ``converged``
+        is :func:`converged_of` the outputs' status, computed here when not given."""
         shaped = lambda a: a.reshape(shape)  # noqa: E731
         by_link = lambda rows: MappingProxyType(  # noqa: E731
             {link: shaped(rows[k]) for k, link in enumerate(links)})
@@ -122,7 +124,8 @@ class SweepResult(Displayed):
                    output_power=shaped(outputs.output_power),
                    total_loss=shaped(outputs.total_loss), losses=by_link(outputs.losses),
                    drivers=by_link(outputs.codes), self_locking=shaped(outputs.self_locking),
-                   converged=shaped(_converged(outputs.status)),
+                   converged=shaped(converged_of(outputs.status)
+                                    if converged is None else converged),
                    status=shaped(outputs.status),
                    passes=shaped(outputs.passes), backend=backend)
 
@@ -313,7 +316,7 @@ def _cells(name: str, values: np.ndarray) -> list[str]:
     return list(map(repr, values.astype(float).tolist()))
 
 
-def _converged(status: np.ndarray) -> np.ndarray:
+def converged_of(status: np.ndarray) -> np.ndarray:
     """Where a variant has an answer (``ok`` or ``locked``): one pass and one new array
     when nothing locked (a run's usual case), for a million variants or more."""
     converged = status == OK
