@@ -39,7 +39,7 @@ __all__ = ["record"]
 T = TypeVar("T", bound=type)
 
 #: The attribute holding a record class's (compared, hashed, shown) field readers.
-_READERS = "__record_readers__"
+_READERS = "_record_readers"
 
 
 def record(cls: T | None = None, /, *, eq: bool = True, repr: bool = True):  # noqa: A002
