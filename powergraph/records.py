@@ -77,7 +77,9 @@ def record(cls: T | None = None, /, *, eq: bool = True, repr: bool = True):  # n
 
 def _declare(cls: T, eq: bool, shown: bool) -> T:
     own = cls.__dict__
-    explicit_hash = not ("__hash__" not in own or (own["__hash__"] is None and "__eq__" in own))
+    # dataclass's rule: a __hash__ written in the body is kept; the None Python puts there
+    # for a class that writes __eq__ alone is not one
+    explicit_hash = "__hash__" in own and not (own["__hash__"] is None and "__eq__" in own)
     cls = dataclasses.dataclass(cls, frozen=True, eq=False, repr=False)
     fields = dataclasses.fields(cls)
     setattr(cls, _READERS, (
