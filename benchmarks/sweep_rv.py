@@ -201,17 +201,20 @@ def loop(model, values: dict[str, np.ndarray], count: int) -> tuple[float, np.nd
 
 def best_times(runs: dict, repeat: int) -> tuple[dict[str, float], dict[str, float]]:
     """Best wall time of each callable, interleaved, after one warm-up run each; and the
-    warm-up (first) times, which include the page faults of fresh memory."""
+    warm-up (first) times, which include the page faults of fresh memory. Each round
+    starts one callable later than the one before, so that each is timed after each other
+    equally often (a run finds the caches and the allocator as the one before left them)."""
     times = {name: [] for name in runs}
     first = {}
     for name, run in runs.items():
         start = time.perf_counter()
         run()
         first[name] = time.perf_counter() - start
-    for _ in range(repeat):
-        for name, run in runs.items():
+    order = list(runs)
+    for round_ in range(repeat):
+        for name in order[round_ % len(order):] + order[:round_ % len(order)]:
             start = time.perf_counter()
-            run()
+            runs[name]()
             times[name].append(time.perf_counter() - start)
     return {name: min(t) for name, t in times.items()}, first
 
@@ -292,7 +295,7 @@ def main() -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON line")
     parser.add_argument("--variants", type=int, default=10**6)
     parser.add_argument("--loop", type=int, default=1000, help="single solves timed")
-    parser.add_argument("--repeat", type=int, default=15)
+    parser.add_argument("--repeat", type=int, default=40)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     row = measure(args.variants, args.loop, args.repeat, args.seed)
