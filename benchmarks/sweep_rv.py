@@ -63,6 +63,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import random
 import resource
 import sys
 import time
@@ -201,18 +202,19 @@ def loop(model, values: dict[str, np.ndarray], count: int) -> tuple[float, np.nd
 
 def best_times(runs: dict, repeat: int) -> tuple[dict[str, float], dict[str, float]]:
     """Best wall time of each callable, interleaved, after one warm-up run each; and the
-    warm-up (first) times, which include the page faults of fresh memory. Each round
-    starts one callable later than the one before, so that each is timed after each other
-    equally often (a run finds the caches and the allocator as the one before left them)."""
+    warm-up (first) times, which include the page faults of fresh memory. Each round runs
+    the callables in a fresh shuffled order (seeded), so that none is always timed after
+    the same one (a run finds the caches and the allocator as the one before left them)."""
     times = {name: [] for name in runs}
     first = {}
     for name, run in runs.items():
         start = time.perf_counter()
         run()
         first[name] = time.perf_counter() - start
-    order = list(runs)
-    for round_ in range(repeat):
-        for name in order[round_ % len(order):] + order[:round_ % len(order)]:
+    order, shuffle = list(runs), random.Random(0).shuffle
+    for _ in range(repeat):
+        shuffle(order)
+        for name in order:
             start = time.perf_counter()
             runs[name]()
             times[name].append(time.perf_counter() - start)
