@@ -5,6 +5,7 @@ from __future__ import annotations
 import ast
 import copy
 import dataclasses
+import inspect
 import pickle
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -53,8 +54,23 @@ def shapes(decorate):
     class Single:
         value: float
 
+    @decorate
+    class Made:
+        """A record with factories, a field left out of ``__init__`` and a post-init."""
+        name: str
+        ratios: tuple = field(default_factory=tuple)
+        count: int = field(default=0, init=False)
+        stamps: list = field(default_factory=list, init=False, compare=False)
+
+        def __post_init__(self):
+            object.__setattr__(self, "count", len(self.ratios))
+
+    @decorate
+    class Bare:
+        speed: float = 0.0
+
     return {"Plain": Plain, "Hidden": Hidden, "Written": Written, "Child": Child,
-            "Empty": Empty, "Single": Single}
+            "Empty": Empty, "Single": Single, "Made": Made, "Bare": Bare}
 
 
 OURS = shapes(record)
@@ -64,7 +80,9 @@ ARGUMENTS = {"Plain": [("sun",), ("sun", 21), ("sun", 20, (1.5, 2))],
              "Written": [(1.2,), (0.9,), (2.0,)],
              "Child": [("sun",), ("sun", 20, (), 2.0)],
              "Empty": [()],
-             "Single": [(1.0,), (2.0,)]}
+             "Single": [(1.0,), (2.0,)],
+             "Made": [("a",), ("a", (1.0, 2.0)), ("b", (1.0,))],
+             "Bare": [(), (2.0,)]}
 
 
 def both(name):
@@ -101,6 +119,55 @@ def test_fields_are_frozen_and_the_dataclass_tools_work(name) -> None:
             with pytest.raises(dataclasses.FrozenInstanceError):
                 delattr(ours, attribute)
         assert copy.deepcopy(ours) == ours
+
+
+@pytest.mark.parametrize("name", sorted(ARGUMENTS))
+def test_init_signature_docstring_and_defaults_match_the_standard_library(name) -> None:
+    assert str(inspect.signature(OURS[name])) == str(inspect.signature(THEIRS[name]))
+    assert OURS[name].__doc__ == THEIRS[name].__doc__
+    for ours, theirs in both(name):
+        assert vars(ours) == vars(theirs)           # every field set, __post_init__ run
+
+
+def test_factories_give_each_record_a_fresh_value() -> None:
+    one, two = OURS["Made"]("a"), OURS["Made"]("a")
+    assert one.stamps == [] and one.stamps is not two.stamps
+    assert OURS["Made"]("a", (3.0,)).count == 1
+
+
+def test_a_plain_subclass_may_set_other_attributes_but_not_fields() -> None:
+    for classes in (OURS, THEIRS):
+        class Plain(classes["Plain"]):
+            pass
+
+        sun = Plain("sun")
+        sun.note = "ok"
+        assert sun.note == "ok"
+        del sun.note
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            sun.teeth = 3
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            del sun.name
+
+
+def test_a_field_without_default_after_one_with_a_default_is_refused() -> None:
+    for decorate in (record, dataclass(frozen=True)):
+        with pytest.raises(TypeError, match="non-default argument 'b' follows default"):
+            @decorate
+            class Wrong:
+                a: int = 1
+                b: int
+
+
+def test_a_frozen_dataclass_may_inherit_from_a_record() -> None:
+    @dataclass(frozen=True)
+    class Tagged(OURS["Plain"]):
+        tag: str = "x"
+
+    tagged = Tagged("sun", tag="y")
+    assert (tagged.name, tagged.teeth, tagged.tag) == ("sun", 20, "y")
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        tagged.tag = "z"
 
 
 def test_package_records_survive_pickling() -> None:

@@ -24,7 +24,7 @@ from powergraph.analyses.sweep import backends
 from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.layout import Layout, base_values, layout_of
 from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_all,
-                                             check_values, parse_paths)
+                                             check_values, flat_values, parse_paths)
 from powergraph.analyses.sweep.result import (CYCLE, LOCKED, OK, UNSETTLED, SweepResult,
                                              converged_of)
 from powergraph.errors import ModelError, PowerGraphError, UsageError
@@ -163,8 +163,7 @@ class CompiledSweep:
             check_all(self.parameters, arrays)
         else:    # the kernels check the arrays' values; the values given once, here
             _check_scalars(self.parameters, arrays)
-        flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
-                for path, a in arrays.items()}
+        flat = flat_values(arrays, shape)
         step = max(1, int(chunk_size))
         outputs = Outputs.empty(n, self.layout.n_elements)
         rest, converged = (None, None) if kernels is None else self._run_kernels(kernels, flat,
@@ -269,8 +268,7 @@ class CompiledSweep:
         0.95
         """
         arrays, shape = broadcast_values(self.parameters, values)
-        flat = {path: np.ravel(np.broadcast_to(a, shape)) if a.ndim else a
-                for path, a in arrays.items()}
+        flat = flat_values(arrays, shape)
         return self._variant(flat, index)
 
     def _variant(self, flat: dict, index: int) -> Model:

@@ -24,7 +24,8 @@ import numpy as np
 
 from powergraph.analyses.parallel import map_chunks
 from powergraph.analyses.sweep.compile import CHUNK_SIZE, compile_sweep
-from powergraph.analyses.sweep.paths import broadcast_values, parse_paths
+from powergraph.analyses.sweep.paths import (broadcast_values, flat_values, parse_paths,
+                                             shaped_views)
 from powergraph.analyses.sweep.result import SweepResult
 from powergraph.errors import UsageError
 from powergraph.model.spec import Model
@@ -60,7 +61,7 @@ def sweep_on_cluster(model: Model, values: Mapping[str, Any], *, backend: str = 
         raise UsageError(f"part_size must be a whole multiple of {CHUNK_SIZE} variants")
     arrays, shape = broadcast_values(parse_paths(model, list(values)), values)
     n = int(np.prod(shape, dtype=np.int64))
-    flat = {path: np.ravel(np.broadcast_to(a, shape)) for path, a in arrays.items()}
+    flat = flat_values(arrays, shape, keep_scalars=False)
     key = uuid4().hex
     parts = [(key, model, tuple(flat), backend,
               {path: v[start:start + part_size] for path, v in flat.items()})
@@ -90,7 +91,7 @@ def _joined(name: str, arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
     links = tuple(parts[0].losses)
     return SweepResult(
         name=name,
-        parameters=MappingProxyType({p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
+        parameters=shaped_views(arrays, shape),
         ratio=joined(lambda p: p.ratio), efficiency=joined(lambda p: p.efficiency),
         input_power=joined(lambda p: p.input_power),
         output_power=joined(lambda p: p.output_power),

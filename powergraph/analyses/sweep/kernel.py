@@ -9,7 +9,7 @@ does: read the swept values and check they are allowed (:func:`~powergraph.analy
 paths.value_allowed`), form the ratio magnitudes from the teeth, compute the form's sympy
 expressions (common subexpressions eliminated, printed as Python), check the pattern — the
 speed system regular, the given torques' powers finite, then for each checked force
-system: regular, its forces finite, and the driver codes the single solver's rule reads
+system: regular, its forces finite (their bound below is), and the driver codes the single solver's rule reads
 equal the expected ones — and, where all of this holds, write every result of
 :class:`~powergraph.analyses.sweep.evaluate.Outputs` and a ``valid`` flag. The other
 variants are left to the numpy path, which gives them exactly today's answer.
@@ -221,7 +221,9 @@ def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str], allowed: 
     forces: list[str] = []
     for p, (pattern, expected) in enumerate(form.checked):
         forces = [f"o{at + 2 + i}" for i in range(n_el + len(lay.unknown))]
-        checks += [f"(o{at} > o{at + 1})"] + [f"math.isfinite({f})" for f in forces]
+        # u{p} sums every force's magnitude (times a stencil whose gear-a entry is 1):
+        # finite only where every force is (an overflow only rejects the variant)
+        checks += [f"(o{at} > o{at + 1})", f"math.isfinite(u{p})"]
         at += 2 + len(forces)
         factors = {k: _python(factor_of(code, sp.Symbol(f"e{k}")))
                    for k, code in zip(form.moving, pattern)}

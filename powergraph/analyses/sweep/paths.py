@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import re
+from types import MappingProxyType
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -17,8 +18,8 @@ from powergraph.model.schema_parts import (MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_
 from powergraph.model.spec import Model
 
 __all__ = ["LINK_FIELDS", "PORT_FIELDS", "Parameter", "as_array", "broadcast_values",
-           "cartesian", "check_all", "check_values", "parse_path", "parse_paths", "parse_set",
-           "parse_sets", "value_allowed"]
+           "cartesian", "check_all", "check_values", "flat_values", "parse_path", "parse_paths", "parse_set",
+           "parse_sets", "shaped_views", "value_allowed"]
 
 
 def parse_paths(model: Model, paths) -> tuple[Parameter, ...]:
@@ -137,6 +138,40 @@ def broadcast_values(params: Sequence[Parameter], values: Mapping[str, Any],
         shapes = ", ".join(f"{p} {a.shape}" for p, a in arrays.items())
         raise UsageError(f"the swept arrays do not broadcast together: {shapes}") from None
     return arrays, shape
+
+
+def flat_values(arrays: Mapping[str, np.ndarray], shape: tuple[int, ...],
+                keep_scalars: bool = True) -> dict[str, np.ndarray]:
+    """Each swept array broadcast to ``shape`` and flattened (an array that has the shape
+    already and is contiguous is passed as it is: no copy, no broadcast view); with
+    ``keep_scalars`` a value given once (0-d) stays one value.
+
+    >>> flat_values({"a": np.ones((2, 1)), "b": np.array(3.0)}, (2, 2))["a"].tolist()
+    [1.0, 1.0, 1.0, 1.0]
+    """
+    return {path: a if keep_scalars and not a.ndim else
+            np.ravel(a if a.shape == shape else np.broadcast_to(a, shape))
+            for path, a in arrays.items()}
+
+
+def shaped_views(arrays: Mapping[str, np.ndarray],
+                 shape: tuple[int, ...]) -> Mapping[str, np.ndarray]:
+    """Read-only views of the swept arrays in the broadcast ``shape`` (a result's
+    ``parameters``: what ``np.broadcast_to`` gives, without its cost where the array has
+    the shape already).
+
+    >>> views = shaped_views({"a": np.arange(3.0)}, (2, 3))
+    >>> views["a"].shape, views["a"].flags.writeable
+    ((2, 3), False)
+    """
+    def view(a: np.ndarray) -> np.ndarray:
+        if a.shape != shape:
+            return np.broadcast_to(a, shape)
+        same = a.view()
+        same.flags.writeable = False
+        return same
+
+    return MappingProxyType({path: view(a) for path, a in arrays.items()})
 
 
 def check_all(params: Sequence[Parameter], arrays: Mapping[str, np.ndarray]) -> None:

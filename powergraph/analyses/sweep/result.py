@@ -8,6 +8,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from powergraph.format import csv_header
+from powergraph.analyses.sweep.paths import shaped_views
 from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
 from powergraph.records import record
 
@@ -116,8 +117,7 @@ class SweepResult(Displayed):
         shaped = lambda a: a.reshape(shape)  # noqa: E731
         by_link = lambda rows: MappingProxyType(  # noqa: E731
             {link: shaped(rows[k]) for k, link in enumerate(links)})
-        return cls(name=name, parameters=MappingProxyType(
-                       {p: np.broadcast_to(a, shape) for p, a in arrays.items()}),
+        return cls(name=name, parameters=shaped_views(arrays, shape),
                    ratio=shaped(outputs.ratio),
                    efficiency=shaped(outputs.efficiency),   # flow efficiency, 0 if locked
                    input_power=shaped(outputs.input_power),
