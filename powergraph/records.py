@@ -8,7 +8,7 @@ compared and hashed by the values of its fields, with the repr ``Name(a=1, b=2)`
 Why not ``dataclass(frozen=True)`` itself: on Python 3.11 it compiles six methods per class
 when the class is declared (``__init__``, ``__setattr__``, ``__delattr__``, ``__eq__``,
 ``__hash__``, ``__repr__``), about 0.1 ms each; ``powergraph solve`` declares 21 classes.
-Only ``__init__`` depends on the class. ``record`` compiles that one alone (assigning
+Only ``__init__`` has to be written for each class. ``record`` compiles that one alone (assigning
 through ``object.__setattr__``, as the frozen ``__init__`` does) and gives every class the
 same ``__setattr__``, ``__delattr__``, ``__eq__``, ``__hash__`` and ``__repr__``, written
 once here. They follow the rules of the generated methods: assigning or deleting any
