@@ -8,10 +8,10 @@ compared and hashed by the values of its fields, with the repr ``Name(a=1, b=2)`
 Why not ``dataclass(frozen=True)`` itself: on Python 3.11 it compiles six methods per class
 when the class is declared (``__init__``, ``__setattr__``, ``__delattr__``, ``__eq__``,
 ``__hash__``, ``__repr__``), about 0.1 ms each; ``powergraph solve`` declares 21 classes.
-Only ``__init__`` has to be written for each class. ``record`` compiles that one alone (assigning
-through ``object.__setattr__``, as the frozen ``__init__`` does) and gives every class the
-same ``__setattr__``, ``__delattr__``, ``__eq__``, ``__hash__`` and ``__repr__``, written
-once here. They follow the rules of the generated methods: assigning or deleting any
+Only ``__init__`` has to be written for each class. ``record`` compiles that one alone
+(assigning through ``object.__setattr__``, as the frozen ``__init__`` does) and gives every
+class the same ``__setattr__``, ``__delattr__``, ``__eq__``, ``__hash__`` and ``__repr__``,
+written once here. They follow the rules of the generated methods: assigning or deleting any
 attribute of a record raises ``FrozenInstanceError`` (a plain subclass may still set
 attributes that are not fields); fields with ``compare=False`` are neither compared nor
 hashed (``hash`` overrides for hashing), fields with ``repr=False`` are not shown,

@@ -9,10 +9,11 @@ does: read the swept values and check they are allowed (:func:`~powergraph.analy
 paths.value_allowed`), form the ratio magnitudes from the teeth, compute the form's sympy
 expressions (common subexpressions eliminated, printed as Python), check the pattern — the
 speed system regular, the given torques' powers finite, then for each checked force
-system: regular, its forces finite (their bound below is), and the driver codes the single solver's rule reads
-equal the expected ones — and, where all of this holds, write every result of
-:class:`~powergraph.analyses.sweep.evaluate.Outputs` and a ``valid`` flag. The other
-variants are left to the numpy path, which gives them exactly today's answer.
+system: regular, its forces finite (one test: the bound of its scales below is), and the
+driver codes the single solver's rule reads equal the expected ones — and, where all of
+this holds, write every result of :class:`~powergraph.analyses.sweep.evaluate.Outputs` and
+a ``valid`` flag. The other variants are left to the numpy path, which gives them exactly
+today's answer.
 
 The driver codes are read on a bound of the elements' own scales
 (:func:`~powergraph.statics.directions.element_load`): a few operations per element

@@ -18,8 +18,8 @@ from powergraph.model.schema_parts import (MAX_POWER, MAX_RATIO, MAX_SPEED, MAX_
 from powergraph.model.spec import Model
 
 __all__ = ["LINK_FIELDS", "PORT_FIELDS", "Parameter", "as_array", "broadcast_values",
-           "cartesian", "check_all", "check_values", "flat_values", "parse_path", "parse_paths", "parse_set",
-           "parse_sets", "shaped_views", "value_allowed"]
+           "cartesian", "check_all", "check_values", "flat_values", "parse_path",
+           "parse_paths", "parse_set", "parse_sets", "shaped_views", "value_allowed"]
 
 
 def parse_paths(model: Model, paths) -> tuple[Parameter, ...]:

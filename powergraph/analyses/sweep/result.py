@@ -7,8 +7,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from powergraph.format import csv_header
 from powergraph.analyses.sweep.paths import shaped_views
+from powergraph.format import csv_header
 from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
 from powergraph.records import record
 
