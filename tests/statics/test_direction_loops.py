@@ -104,6 +104,15 @@ def test_the_bound_is_above_every_own_scale(problem) -> None:
         assert body_load.max() <= SCALE_BOUND * total
 
 
+@SETTINGS
+@given(finite, st.floats(1e-3, 1e3), st.sampled_from([math.inf, -math.inf, math.nan]))
+def test_a_force_that_is_not_finite_makes_the_bound_not_finite(ratio, factor, bad) -> None:
+    """The sweep's kernels test a force system's finiteness once, on its bound: an
+    element's load is not finite when its force is not (whatever its ratio, even 0)."""
+    assert not math.isfinite(element_load(ratio, factor, bad))
+    assert not math.isfinite(SCALE_BOUND * (1.0 + element_load(ratio, factor, bad)))
+
+
 def test_ordinary_trains_are_decided_on_the_bound() -> None:
     """Not a vacuous bound: a pair on the frame (bodies 1, 2) with 10 N*m on another body
     (3) names its driver from forces far below the 10 N*m; only a force under 1e-10 of
