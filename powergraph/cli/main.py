@@ -23,17 +23,18 @@ _SIZE_SUFFIXES = {"": 1, "k": 10**3, "m": 10**6, "g": 10**9}
 _SIZE_LIMIT = 10**15
 
 
-def parse_size(text: str) -> int:
-    """--max-model-size: bytes, optionally with k, M or G (powers of 1000).
+def parse_size(text: str, option: str = "--max-model-size") -> int:
+    """--max-model-size, --max-table-size: bytes, optionally with k, M or G (powers of
+    1000).
 
     >>> parse_size("20M"), parse_size("1.5k")
     (20000000, 1500)
     """
     number, suffix = (text[:-1], text[-1].lower()) if text[-1:].isalpha() else (text, "")
     if suffix not in _SIZE_SUFFIXES:
-        raise UsageError(f"--max-model-size {text}: not a size in bytes (e.g. 20M)")
+        raise UsageError(f"{option} {text}: not a size in bytes (e.g. 20M)")
     scale = _SIZE_SUFFIXES[suffix]
-    value = number_option(number, "--max-model-size", 1 / scale, _SIZE_LIMIT / scale)
+    value = number_option(number, option, 1 / scale, _SIZE_LIMIT / scale)
     return max(1, int(value * scale))
 
 
@@ -51,6 +52,10 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--max-model-size", metavar="BYTES",
                         help="refuse model files larger than this (default 10M, or the "
                              "environment variable POWERGRAPH_MAX_MODEL_BYTES)")
+    parser.add_argument("--max-table-size", metavar="BYTES",
+                        help="refuse table files (points CSV, efficiency maps) larger than "
+                             "this (default 100M, or the environment variable "
+                             "POWERGRAPH_MAX_TABLE_BYTES)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     named = command_named(argv)
@@ -77,7 +82,7 @@ def command_named(argv: list[str] | None) -> str | None:
     """
     words = iter(argv or ())
     for word in words:
-        if word == "--max-model-size":
+        if word in ("--max-model-size", "--max-table-size"):
             next(words, None)
         elif word in ("-h", "--help"):
             return None
@@ -120,12 +125,15 @@ def _run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
     """Run the command with the model size limit set and numpy warnings turned into errors,
     once no output would overwrite one of its inputs."""
     from powergraph.cli.common import glyph_notices, refuse_overwriting_inputs
-    from powergraph.model.yaml_loader import size_limit
+    from powergraph.model.input_files import size_limit
 
     commands = next(a for a in parser._actions if a.dest == "command")
     refuse_overwriting_inputs(commands.choices[args.command], args)
-    limit = None if args.max_model_size is None else parse_size(args.max_model_size)
-    with size_limit(limit), warnings.catch_warnings(), glyph_notices():
+    models, tables = ((None if text is None else parse_size(text, option))
+                      for text, option in ((args.max_model_size, "--max-model-size"),
+                                           (args.max_table_size, "--max-table-size")))
+    with size_limit(models, "model"), size_limit(tables, "table"), \
+            warnings.catch_warnings(), glyph_notices():
         warnings.simplefilter("error", RuntimeWarning)
         return args.handler(args)
 

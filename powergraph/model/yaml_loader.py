@@ -29,9 +29,7 @@ powergraph.errors.ModelError: a: duplicate key 'a' (line 2; first at line 1)
 from __future__ import annotations
 
 import gc
-import os
 import re
-import stat
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator
@@ -40,6 +38,8 @@ import yaml
 from yaml import events as ev
 
 from powergraph.errors import ModelError
+from powergraph.model.input_files import KINDS, max_bytes, place, read_bytes
+from powergraph.model.input_files import size_limit  # noqa: F401  (the CLI sets it here)
 from powergraph.model.yaml_tags import MAX_NUMBER_DIGITS, MERGE_KEY, TagProblem
 from powergraph.model.yaml_tags import check_collection_tag, tagged_scalar
 
@@ -47,12 +47,11 @@ from powergraph.model.yaml_tags import check_collection_tag, tagged_scalar
 MAX_ALIAS_EXPANSION = 100_000
 #: Deepest nesting of mappings and lists (a model needs about six levels).
 MAX_DEPTH = 100
-#: Default size limit of a model file, in bytes.
-DEFAULT_MAX_MODEL_BYTES = 10_000_000
-ENV_MAX_MODEL_BYTES = "POWERGRAPH_MAX_MODEL_BYTES"
+#: Default size limit of a model file, in bytes (the model kind of input file).
+DEFAULT_MAX_MODEL_BYTES = KINDS["model"].default
+ENV_MAX_MODEL_BYTES = KINDS["model"].variable
 
 _Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_override: list[int] = []
 
 
 def max_model_bytes() -> int:
@@ -62,34 +61,7 @@ def max_model_bytes() -> int:
     >>> max_model_bytes() > 0
     True
     """
-    if _override:
-        return _override[-1]
-    text = os.environ.get(ENV_MAX_MODEL_BYTES)
-    if text is None:
-        return DEFAULT_MAX_MODEL_BYTES
-    try:
-        value = int(text)
-    except ValueError:
-        raise ModelError(f"{ENV_MAX_MODEL_BYTES}={text!r} is not a whole number of bytes") \
-            from None
-    if value < 1:
-        raise ModelError(f"{ENV_MAX_MODEL_BYTES} must be at least 1, got {value}")
-    return value
-
-
-class size_limit:
-    """Context manager setting the model size limit (used by ``--max-model-size``)."""
-
-    def __init__(self, limit: int | None) -> None:
-        self.limit = limit
-
-    def __enter__(self) -> None:
-        if self.limit is not None:
-            _override.append(self.limit)
-
-    def __exit__(self, *exc: object) -> None:
-        if self.limit is not None:
-            _override.pop()
+    return max_bytes("model")
 
 
 @contextmanager
@@ -129,28 +101,20 @@ def join_path(prefix: str, key: Any) -> str:
     return f"{prefix}.{key}" if prefix else str(key)
 
 
-def _place(data: bytes, offset: int) -> str:
-    """'line L, column C' of byte ``offset`` (column counted in characters)."""
-    start = data.rfind(b"\n", 0, offset) + 1
-    column = len(data[start:offset].decode("utf-8", errors="replace")) + 1
-    line = data.count(b"\n", 0, offset) + 1
-    return f"line {line}, column {column}"
-
-
 def _check_text(data: bytes, source: str) -> None:
     """Refuse invalid UTF-8, control characters and a byte-order mark after the start."""
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise ModelError(f"not UTF-8 text: invalid byte 0x{data[exc.start]:02x} at "
-                         f"{_place(data, exc.start)}", source) from None
+                         f"{place(data, exc.start)}", source) from None
     match = _BAD_CHARACTER.search(text)
     bad = match.start() if match else None
     if bad is not None:
         ch = text[bad]
         what = "byte-order mark" if ch == "\ufeff" else "control character"
         offset = len(text[:bad].encode("utf-8", errors="surrogatepass"))
-        raise ModelError(f"{what} U+{ord(ch):04X} at {_place(data, offset)} is not allowed "
+        raise ModelError(f"{what} U+{ord(ch):04X} at {place(data, offset)} is not allowed "
                          "in a model file", source)
 
 
@@ -372,31 +336,7 @@ def read_model_bytes(path: str | Path) -> bytes:
     Regular files are checked by their size before reading; devices and pipes are read
     only up to the limit (``powergraph check /dev/zero`` stops at once).
     """
-    path = Path(path)
-    limit = max_model_bytes()
-    try:
-        with open(path, "rb") as handle:
-            info = os.fstat(handle.fileno())
-            if stat.S_ISDIR(info.st_mode):
-                raise IsADirectoryError
-            if stat.S_ISREG(info.st_mode) and info.st_size > limit:
-                raise ModelError(_too_large(path, info.st_size, limit))
-            data = handle.read(limit + 1)
-    except FileNotFoundError:
-        raise ModelError(f"no such file: {path}") from None
-    except IsADirectoryError:
-        raise ModelError(f"{path} is a directory, not a model file") from None
-    except OSError as exc:
-        raise ModelError(f"cannot read {path}: {exc.strerror or exc}") from None
-    if len(data) > limit:
-        raise ModelError(_too_large(path, None, limit))
-    return data
-
-
-def _too_large(path: Path, size: int | None, limit: int) -> str:
-    what = f"{size} bytes" if size is not None else "more than that"
-    return (f"{path} is too large for a model file ({what}; the limit is {limit} bytes: "
-            f"raise it with --max-model-size or {ENV_MAX_MODEL_BYTES})")
+    return read_bytes(path, "model", "a model file")
 
 
 def load_yaml_file(path: str | Path) -> Any:
