@@ -1,5 +1,5 @@
-"""Electric machines on electrical buses (docs/hybrid.md): the ``efficiency`` and ``bus``
-of a ``role: machine`` port, and the top-level ``buses:`` block.
+"""Electric machines on electrical buses (docs/hybrid.md): the ``efficiency``, ``bus`` and
+``max_speed`` of a ``role: machine`` port, and the top-level ``buses:`` block.
 
 A machine turns electrical power into mechanical power at its port: it draws ``P/η`` from
 its bus when it motors (``P`` > 0, mechanical power into the train) and returns ``P·η``
@@ -28,11 +28,15 @@ _FREE = (None, "free")
 
 def machine_fields(item: Mapping[str, Any], path: str,
                    folder: Path | None = None) -> dict[str, Any]:
-    """``{efficiency, bus}`` of a port: a machine needs a bus (efficiency default 1, or
-    ``{map: FILE.csv}`` read relative to ``folder``, the model file's folder); an input or
-    output takes neither."""
+    """``{efficiency, bus, max_speed}`` of a port: a machine needs a bus (efficiency
+    default 1, or ``{map: FILE.csv}`` read relative to ``folder``, the model file's folder;
+    ``max_speed`` optional, rad/s, > 0 by the schema); an input or output takes none.
+
+    >>> machine_fields({"role": "machine", "bus": "dc", "max_speed": "3000 rpm"}, "x")
+    {'efficiency': 1.0, 'bus': 'dc', 'max_speed': 314.1592653589793}
+    """
     if item.get("role") != "machine":
-        for key in ("efficiency", "bus"):
+        for key in ("efficiency", "bus", "max_speed"):
             if key in item:
                 raise ModelError(f"only a machine port (role: machine) has {key}",
                                  f"{path}.{key}")
@@ -48,7 +52,10 @@ def machine_fields(item: Mapping[str, Any], path: str,
                                            f"{path}.efficiency.map")
     else:
         efficiency = float(efficiency)
-    return {"efficiency": efficiency, "bus": str(item["bus"])}
+    max_speed = item.get("max_speed")
+    if max_speed is not None:
+        max_speed = parse_quantity(max_speed, "speed", f"{path}.max_speed")
+    return {"efficiency": efficiency, "bus": str(item["bus"]), "max_speed": max_speed}
 
 
 def buses_of(raw: Mapping | None, ports: tuple[Port, ...]) -> Mapping[str, Bus]:

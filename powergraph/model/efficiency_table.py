@@ -1,12 +1,18 @@
 """A machine's efficiency over speed and torque, read from a CSV file (docs/hybrid.md).
 
 ``efficiency: {map: mg2.csv}`` on a machine port names a table, relative to the model
-file's folder: a header ``speed [rpm]`` (or ``speed [rad/s]``), ``torque [N·m]`` (or
-``torque [Nm]``), ``efficiency``, then one row per grid point, every combination of the
-speeds and torques given exactly once, efficiencies in (0, 1]. The machine's efficiency at
-a point is the bilinear interpolation at ``|speed|`` and ``|torque|`` (the same efficiency
-motoring and generating, in either sense of rotation, as catalogue maps are drawn); outside
-the grid the nearest edge value is taken and the result warns (``outside-map``).
+file's folder: a header ``speed [UNIT]``, ``torque [UNIT]``, ``efficiency`` (the units read
+as a model's are, :func:`~powergraph.model.units.unit_factor`: ``speed [rpm]``,
+``speed [rad/s]``, ``torque [N·m]``, ``torque [Nm]``...), then one row per grid point,
+every combination of the speeds and torques given exactly once, efficiencies in
+[1e-6, 1] (:data:`~powergraph.model.schema_parts.MIN_MACHINE_EFFICIENCY`, as
+``--mesh-efficiency``'s range). The file is read as every table is
+(:mod:`powergraph.model.input_files`: bounded, UTF-8 with or without a byte-order mark);
+its problems are :class:`ModelError` at the port's ``efficiency.map``, naming the file and
+its line. The machine's efficiency at a point is the bilinear interpolation at ``|speed|``
+and ``|torque|`` (the same efficiency motoring and generating, in either sense of rotation,
+as catalogue maps are drawn); outside the grid the nearest edge value is taken and the
+result warns (``outside-map``).
 
 Examples
 --------
@@ -21,17 +27,22 @@ from __future__ import annotations
 
 import csv
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 
-from powergraph.errors import ModelError
+from powergraph.errors import ModelError, UsageError
+from powergraph.model.input_files import decode_text, read_bytes
+from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE, MIN_MACHINE_EFFICIENCY
+from powergraph.model.units import unit_factor
+from powergraph.model.yaml_loader import brief
 from powergraph.records import record
-from powergraph.units_si import RAD_S_PER_RPM
 
-#: Header names accepted for each column, with the factor to SI (rad/s, N·m).
-SPEED_COLUMNS = {"speed [rpm]": RAD_S_PER_RPM, "speed [rad/s]": 1.0}
-TORQUE_COLUMNS = {"torque [n·m]": 1.0, "torque [nm]": 1.0, "torque [n*m]": 1.0}
+#: A column header: its name, then its unit in brackets (``speed [rpm]``).
+_COLUMN = re.compile(r"\s*(?P<kind>speed|torque|efficiency)\s*(?:\[(?P<unit>[^\]]*)\])?\s*",
+                     re.IGNORECASE)
+_LINE = re.compile(r".*?(?:\r\n|\r|\n)|.+", re.DOTALL)
 #: Most rows of one table (a map of 500 × 500 points is far finer than any catalogue's).
 MAX_ROWS = 250_000
 
@@ -58,59 +69,103 @@ class EfficiencyTable:
 
 def read_efficiency_table(name: str, folder: Path | None, path: str) -> EfficiencyTable:
     """Read and check the table ``name`` (relative to ``folder``, the model file's
-    folder, or the working folder); a :class:`ModelError` at ``path`` otherwise."""
+    folder, or the working folder); a :class:`ModelError` at ``path`` otherwise, naming
+    the file and its line.
+
+    The file is read as every table is (:mod:`powergraph.model.input_files`: its size
+    limit, UTF-8 with or without a byte-order mark); the rows are checked as they are
+    read, so a file of more than :data:`MAX_ROWS` stops there.
+    """
     file = Path(name) if folder is None else folder / name
     try:
-        with open(file, newline="", encoding="utf-8") as handle:
-            rows = list(_rows(csv.reader(handle), name, path))
-    except (OSError, UnicodeDecodeError, csv.Error) as exc:
-        raise ModelError(f"cannot read the efficiency map {name!r}: "
-                         f"{getattr(exc, 'strerror', None) or exc}", path) from None
-    return _grid(rows, name, path)
+        data = read_bytes(file, "table", "an efficiency map")
+    except UsageError as error:
+        raise ModelError(f"cannot read the efficiency map {name!r}: {error.message}",
+                         path) from None
+    try:
+        text = decode_text(data, name)
+    except UsageError as error:
+        raise ModelError(error.message, path) from None
+    del data
+    try:
+        return _grid(_rows(csv.reader(_lines(text)), name, path), name, path)
+    except csv.Error as error:
+        raise ModelError(f"cannot read the efficiency map {name!r}: {error}", path) from None
+
+
+def _lines(text: str):
+    """The lines of ``text`` one at a time, their ends kept (``\\n``, ``\\r\\n`` or ``\\r``):
+    no copy of the whole (``io.StringIO`` would hold it as four bytes a character)."""
+    return (match.group() for match in _LINE.finditer(text))
+
+
+def _columns(header: list[str], name: str, path: str) -> tuple[float, float]:
+    """The factors to rad/s and N·m of the header's speed and torque columns."""
+    found = [_COLUMN.fullmatch(cell) for cell in header]
+    kinds = [m["kind"].lower() if m else None for m in found]
+    if kinds != ["speed", "torque", "efficiency"] or found[2]["unit"] is not None \
+            or found[0]["unit"] is None or found[1]["unit"] is None:
+        raise ModelError(f"{name} line 1: expected the columns 'speed [rpm]' (or another "
+                         "speed unit), 'torque [N·m]' (or another torque unit), "
+                         f"'efficiency'; got {brief(header)}", path)
+    try:
+        return tuple(unit_factor(m["unit"], kind, path)  # type: ignore[return-value]
+                     for m, kind in zip(found[:2], kinds))
+    except ModelError as error:
+        raise ModelError(f"{name} line 1: {error.message}", path) from None
 
 
 def _rows(reader, name: str, path: str):
-    """``(line, speed rad/s, torque N·m, efficiency)`` per data row, header checked."""
+    """``(line, speed rad/s, torque N·m, efficiency)`` per data row, header checked, at
+    most :data:`MAX_ROWS` of them."""
     header = next(reader, None)
     if header is None:
         raise ModelError(f"{name}: the file is empty", path)
-    keys = [h.strip().lower() for h in header]
-    if len(keys) != 3 or keys[0] not in SPEED_COLUMNS or keys[1] not in TORQUE_COLUMNS \
-            or keys[2] != "efficiency":
-        raise ModelError(f"{name} line 1: expected the columns 'speed [rpm]' (or 'speed "
-                         f"[rad/s]'), 'torque [N·m]', 'efficiency'; got {header!r}", path)
-    to_si = SPEED_COLUMNS[keys[0]]
-    for line, row in enumerate(reader, start=2):
-        if not row or all(not cell.strip() for cell in row):
-            continue
-        if line > MAX_ROWS + 1:
-            raise ModelError(f"{name}: more than {MAX_ROWS} rows", path)
-        if len(row) != 3:
-            raise ModelError(f"{name} line {line}: expected 3 values, got {len(row)}", path)
-        speed, torque, eta = (_number(cell, name, line, path) for cell in row)
+    to_rad_s, to_n_m = _columns(header, name, path)
+    count = 0
+    for row in reader:
+        line = reader.line_num
+        try:
+            speed, torque, eta = map(float, row)   # three numbers: the common case, fast
+        except ValueError:
+            if not any(cell.strip() for cell in row):
+                continue                           # a blank line
+            if len(row) != 3:
+                raise ModelError(f"{name} line {line}: expected 3 values, got {len(row)}",
+                                 path) from None
+            speed, torque, eta = (_number(cell, name, line, path) for cell in row)
+        count += 1
+        if count > MAX_ROWS:
+            raise ModelError(f"{name} line {line}: more than {MAX_ROWS} rows", path)
+        if not math.isfinite(speed + torque + eta):   # nan or inf (or a finite overflow)
+            speed, torque, eta = (_number(cell, name, line, path) for cell in row)
         if speed < 0 or torque < 0:
             raise ModelError(f"{name} line {line}: speeds and torques are magnitudes (>= 0); "
                              "the map applies to both senses", path)
-        if not 0 < eta <= 1:
-            raise ModelError(f"{name} line {line}: efficiency must be in (0, 1], got "
-                             f"{eta:g}", path)
-        yield line, speed * to_si, torque, eta
+        if speed * to_rad_s > MAX_SPEED or torque * to_n_m > MAX_TORQUE:
+            raise ModelError(f"{name} line {line}: beyond the largest speed ({MAX_SPEED:g} "
+                             f"rad/s) or torque ({MAX_TORQUE:g} N·m) a model takes", path)
+        if not MIN_MACHINE_EFFICIENCY <= eta <= 1:
+            raise ModelError(f"{name} line {line}: efficiency must be in "
+                             f"[{MIN_MACHINE_EFFICIENCY:g}, 1], got {eta:g}", path)
+        yield line, speed * to_rad_s, torque * to_n_m, eta
 
 
 def _number(cell: str, name: str, line: int, path: str) -> float:
     try:
-        value = float(cell.strip())
+        value = float(cell)
     except ValueError:
         value = math.nan
-    if not math.isfinite(value) or len(cell) > 64:
-        raise ModelError(f"{name} line {line}: {cell.strip()[:40]!r} is not a finite number",
-                         path)
+    if not math.isfinite(value):
+        raise ModelError(f"{name} line {line}: {brief(cell.strip()[:40])} is not a finite "
+                         "number", path)
     return value
 
 
-def _grid(rows: list, name: str, path: str) -> EfficiencyTable:
-    """The rows as a full rectilinear grid (every speed with every torque, once)."""
-    where = {}
+def _grid(rows, name: str, path: str) -> EfficiencyTable:
+    """The rows (read one by one) as a full rectilinear grid (every speed with every
+    torque, once)."""
+    where: dict[tuple[float, float], tuple[int, float]] = {}
     for line, speed, torque, eta in rows:
         if (speed, torque) in where:
             raise ModelError(f"{name} line {line}: the point {speed:g} rad/s, {torque:g} N·m "

@@ -103,7 +103,7 @@ def read_bytes(path: str | Path, kind: str, what: str) -> bytes:
                 raise IsADirectoryError
             if stat.S_ISREG(info.st_mode) and info.st_size > limit:
                 raise spec.error(_too_large(path, what, info.st_size, limit, spec))
-            data = handle.read(limit + 1)
+            data = _read_text_bytes(handle, limit, spec.error, str(path))
     except FileNotFoundError:
         raise spec.error(f"no such file: {path}") from None
     except IsADirectoryError:
@@ -113,6 +113,29 @@ def read_bytes(path: str | Path, kind: str, what: str) -> bytes:
     if len(data) > limit:
         raise spec.error(_too_large(path, what, None, limit, spec))
     return data
+
+
+#: Bytes read at a time: a small file costs no buffer of the whole limit.
+CHUNK = 1 << 20
+
+
+def _read_text_bytes(handle, limit: int, error: type[PowerGraphError], source: str) -> bytes:
+    """At most ``limit + 1`` bytes of ``handle``, read in chunks; a NUL byte ends the
+    reading at once with an error (no input file is binary: ``/dev/zero`` stops in its
+    first chunk)."""
+    chunks, size = [], 0
+    while size <= limit:
+        chunk = handle.read(min(CHUNK, limit + 1 - size))
+        if not chunk:
+            break
+        nul = chunk.find(b"\0")
+        if nul >= 0:
+            offset = size + nul
+            raise error(f"{source}: a NUL byte (U+0000) at byte {offset} "
+                        f"({place(b''.join(chunks) + chunk, offset)}): not a text file")
+        chunks.append(chunk)
+        size += len(chunk)
+    return b"".join(chunks)
 
 
 def _too_large(path: Path, what: str, size: int | None, limit: int, spec: Kind) -> str:

@@ -34,8 +34,8 @@ from powergraph.model.schema_losses import (_BEARING_FRICTION, _CRANK_BEARING, _
                                             _FRICTION, _MESH_GEOMETRY, _OUTPUT_PINS, _PINS)
 from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_SPEED,
                                            MAX_TEETH, MAX_TORQUE, MIN_RATIO, _EFFICIENCY,
-                                           _geometry_shape, _integer, _length, _link,
-                                           _number, _quantity, _ref, _text)
+                                           _MACHINE_EFFICIENCY, _geometry_shape, _integer,
+                                           _length, _link, _number, _quantity, _ref, _text)
 from powergraph.model.schema_shift import MODES, SHIFT_LINKS
 
 _MESH = {
@@ -179,13 +179,14 @@ _PORT = {
                            minimum=-MAX_POWER, maximum=MAX_POWER),
         "torque": _quantity("torque", "torque", "External torque on the component.",
                             minimum=-MAX_TORQUE, maximum=MAX_TORQUE),
-        "name": _text("name", "A label for reports."),
+        "name": _text("name", "A label for reports, and the port's name in a duty cycle's "
+                              "columns: unique among the ports, not another component's id."),
         "efficiency": {"title": "efficiency", "default": 1,
-                       "description": "A machine's efficiency in (0, 1]: electrical power "
+                       "description": "A machine's efficiency in [1e-6, 1]: electrical power "
                                       "P/efficiency when motoring, P*efficiency when "
                                       "generating; or {map: FILE.csv}, a table over speed "
                                       "and torque (docs/hybrid.md).",
-                       "anyOf": [_EFFICIENCY, {
+                       "anyOf": [_MACHINE_EFFICIENCY, {
                            "type": "object", "title": "efficiency map",
                            "properties": {"map": {
                                "type": "string", "minLength": 1, "title": "map",
@@ -194,6 +195,10 @@ _PORT = {
                            "required": ["map"], "additionalProperties": False}]},
         "bus": {"type": ["string", "number"], "title": "bus",
                 "description": "A machine's electrical bus (a key of buses)."},
+        "max_speed": _quantity("speed", "max_speed",
+                               "A machine's top speed: a solve that turns it faster (in "
+                               "either sense) warns (over-max-speed, docs/hybrid.md).",
+                               exclusiveMinimum=0, maximum=MAX_SPEED),
     },
     "additionalProperties": False,
     "required": ["component", "role"],

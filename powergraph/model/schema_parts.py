@@ -16,6 +16,9 @@ MAX_LENGTH = 1e6       # mm
 MAX_TEETH = 100_000
 MAX_COUNT = 10_000
 MIN_RATIO, MAX_RATIO = 1e-6, 1e6
+#: Smallest efficiency of a machine (a number or a map's value), as ``--mesh-efficiency``'s:
+#: below it the power a machine draws, P/η, leaves the range the solve can balance.
+MIN_MACHINE_EFFICIENCY = 1e-6
 LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "clutch", "brake", "freewheel")
 _UNIT_TEXT = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
 _SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm"}
@@ -101,3 +104,4 @@ def _link(kind: str, description: str, extra: dict) -> dict:
 
 
 _EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
+_MACHINE_EFFICIENCY = {"type": "number", "minimum": MIN_MACHINE_EFFICIENCY, "maximum": 1}

@@ -111,10 +111,12 @@ class Port:
     power: float | None = None
     torque: float | None = None
     name: str | None = None
-    #: A machine's efficiency (a number, or an EfficiencyTable over speed and torque) and
-    #: bus (``role: machine``, docs/hybrid.md); else None.
+    #: A machine's efficiency (a number, or an EfficiencyTable over speed and torque), bus
+    #: and the top of its speed range (rad/s, or None: ``role: machine``, docs/hybrid.md);
+    #: else None.
     efficiency: float | EfficiencyTable | None = None
     bus: str | None = None
+    max_speed: float | None = None
 
     @property
     def path(self) -> str:

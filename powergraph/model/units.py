@@ -6,9 +6,13 @@ it (:func:`unit_expression`): a decimal number, then unit names joined by ``*``,
 at most :data:`MAX_TEXT` characters. Anything else is refused at once, so a hostile string
 (``9**9**9 W``, a unit with hundreds of prefixes) cannot keep pint busy.
 
-A handful of everyday units (rpm, rad/s, Hz, W, kW, N*m, ...) are converted from a small
-table so that `powergraph solve` does not pay pint's start-up time; anything else is
-handed to pint (the test-suite checks the table against it).
+Everyday units (rpm, rad/s, Hz, W, kW, N*m, ...; :func:`accepted_units`) are converted
+from a small table, so `powergraph solve` does not pay pint's start-up time; anything else
+is handed to pint (the test-suite checks the table against it). **Case**: a unit of the
+table is read in any case when that names one unit of its kind (``kw``, ``KW`` -> kW;
+``RPM`` -> rpm; ``nm`` -> N*m); where case tells two apart (``mw``: mW or MW) the text is
+refused, naming both; any other unit is pint's, spelled as pint spells it. Every place
+that reads a unit follows this (:func:`unit_factor` for a table's column header).
 
 Speeds follow one rule (:func:`speed_in_rad_s`): a unit that names an angle (``rad/s``,
 ``deg/s``, ``rev/min``, ``turn/s``) converts through that angle; a unit of frequency
@@ -42,23 +46,26 @@ MAX_TEXT, MAX_NAME = 64, 24
 #: Largest power of a unit (``m^4``) and deepest parentheses in a quantity string.
 MAX_POWER, MAX_PARENS = 4, 2
 
-_RPM = RAD_S_PER_RPM
-# Factor to the SI unit of the kind (mm for lengths, as the geometry tables use). The
-# speeds obey speed_in_rad_s's rule: a pure frequency (Hz, 1/min) is revolutions per time.
-_FAST = {
-    "speed": {"rad/s": 1.0, "rpm": _RPM, "rev/min": _RPM, "r/min": _RPM, "1/min": _RPM,
-              "/min": _RPM, "min^-1": _RPM, "hz": 2 * math.pi, "1/s": 2 * math.pi,
-              "s^-1": 2 * math.pi, "rad/min": 1 / 60, "deg/s": math.pi / 180,
-              "rps": 2 * math.pi, "rev/s": 2 * math.pi},
-    "power": {},  # case matters (mW vs MW): see _CASE_SENSITIVE_POWER
-    "torque": {"n*m": 1.0, "n m": 1.0, "nm": 1.0, "n·m": 1.0, "n.m": 1.0, "kn*m": 1e3,
-               "n*mm": 1e-3, "nmm": 1e-3},
-    "length": {"mm": 1.0, "m": 1e3, "cm": 10.0, "um": 1e-3, "µm": 1e-3},
+_RPM, _TURN = RAD_S_PER_RPM, 2 * math.pi
+# Units read without pint, per kind: (spellings, factor to TABLE_UNITS[kind]); messages
+# show the first spelling. The grammar spells "N·m", "N m" as "N*m", so only juxtapositions
+# ("Nm") need entries. Both units of a case pair (mW, MW) are listed, so that another case
+# is known to be ambiguous. Speeds obey speed_in_rad_s's rule (Hz is revolutions per s).
+_TABLES = {
+    "speed": ((("rad/s",), 1.0), (("rad/min",), 1 / 60), (("deg/s", "°/s"), math.pi / 180),
+              (("rpm", "rev/min", "r/min"), _RPM), (("rps", "rev/s", "turn/s"), _TURN),
+              (("Hz", "1/s", "s^-1"), _TURN), (("kHz",), 1e3 * _TURN),
+              (("1/min", "/min", "min^-1"), _RPM), (("1/h",), _TURN / 3600)),
+    "power": ((("W",), 1.0), (("kW",), 1e3), (("mW",), 1e-3), (("MW",), 1e6),
+              (("hp",), 745.69987158227022)),
+    "torque": ((("N*m", "Nm"), 1.0), (("kN*m", "kNm"), 1e3), (("mN*m", "mNm"), 1e-3),
+               (("MN*m", "MNm"), 1e6), (("N*mm", "Nmm"), 1e-3)),
+    "length": ((("mm",), 1.0), (("m",), 1e3), (("cm",), 10.0), (("um", "µm"), 1e-3),
+               (("Mm",), 1e9)),
+    "dynamic viscosity": ((("mPa*s", "cP"), 1.0), (("Pa*s",), 1e3), (("MPa*s",), 1e9)),
 }
-_CASE_SENSITIVE_POWER = {"W": 1.0, "kW": 1e3, "MW": 1e6, "mW": 1e-3}
-# Common spellings converted without pint, by target unit (case matters: mPa vs MPa).
-_FAST_IN = {"mPa*s": {"mPa*s": 1.0, "mPa s": 1.0, "mPa·s": 1.0, "mPa.s": 1.0, "cP": 1.0,
-                      "Pa*s": 1e3, "Pa s": 1e3, "Pa·s": 1e3, "Pa.s": 1e3}}
+#: The unit the factors of each table lead to.
+TABLE_UNITS = {**SI_UNITS, "dynamic viscosity": "mPa*s"}
 _NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?:\s+|(?=\D)|$)"
                           r"(.*?)\s*", re.DOTALL)
 # One token of a unit expression: a name, the factor 1, an operator, a power, a parenthesis.
@@ -152,11 +159,54 @@ def parse_in_unit(text: str, unit: str, what: str, path: str) -> float:
     >>> parse_in_unit("0.03 Pa*s", "mPa*s", "dynamic viscosity", "x")
     30.0
     """
-    number, expression = _split(text, what, path)
-    factor = _FAST_IN.get(unit, {}).get(expression)
+    number, written = _split(text, what, path)
+    if not written:
+        return number
+    if TABLE_UNITS.get(what) == unit:
+        factor, spelled = _lookup(written, what, what, text, path)
+    else:
+        factor, spelled = None, unit_expression(written, what, path, text)
     if factor is not None:
         return number * factor
-    return _convert(number, expression, unit, text, what, path) if expression else number
+    return _convert(number, spelled, unit, text, what, path)
+
+
+def unit_factor(unit: str, kind: str, where: str) -> float:
+    """The SI value of one ``unit`` of ``kind`` (mm for a length), read as a model's
+    quantities are (the **Case** rule above; a speed by :func:`speed_in_rad_s`'s rule): a
+    table's column header (``engine.speed [RPM]``) checks its unit once, then scales.
+    Otherwise a :class:`ModelError` at ``where`` (an empty, unknown or ambiguous unit, or
+    one of another dimension) listing the units accepted for ``kind``.
+
+    >>> unit_factor("RPM", "speed", "x") == math.pi / 30, unit_factor("kw", "power", "x")
+    (True, 1000.0)
+    >>> unit_factor("mw", "power", "points.csv line 1, 'engine.power [mw]'")
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.ModelError: points.csv line 1, 'engine.power [mw]': cannot read 'mw' \
+as a power: 'mw' could be mW or MW; write the unit with its exact case
+    """
+    if not isinstance(unit, str) or not unit.strip():
+        raise ModelError(f"no unit given: {accepted_units(kind)}", where)
+    if len(unit) > MAX_TEXT:
+        raise _refuse(unit, kind, f"longer than {MAX_TEXT} characters", where)
+    return _si(1.0, unit.strip(), kind, unit.strip(), where)
+
+
+def accepted_units(kind: str) -> str:
+    """The units read for ``kind`` without pint, for messages and docs/format.md.
+
+    >>> accepted_units("power")
+    'a power is written in W, kW, mW, MW or hp (in any case, unless the case tells two \
+apart), or in any unit pint knows, spelled as pint spells it'
+    """
+    pint = "any unit pint knows, spelled as pint spells it"
+    if kind not in _TABLES:
+        return f"a {kind} is written in {pint}"
+    names = [spellings[0] + (f" ({', '.join(spellings[1:])})" if spellings[1:] else "")
+             for spellings, _ in _TABLES[kind]]
+    return (f"a {kind} is written in {', '.join(names[:-1])} or {names[-1]} (in any case, "
+            f"unless the case tells two apart), or in {pint}")
 
 
 def speed_in_rad_s(number: float, unit: str, text: str = "", path: str = "") -> float:
@@ -171,15 +221,13 @@ def speed_in_rad_s(number: float, unit: str, text: str = "", path: str = "") -> 
     >>> speed_in_rad_s(1, "rad/s")
     1.0
     """
-    factor = _FAST["speed"].get(unit.strip().lower())
+    text = text or f"{number:g} {unit}"
+    factor, spelled = _lookup(unit, "speed", "speed", text, path)
     if factor is not None:
         return number * factor
-    text = text or f"{number:g} {unit}"
-    quantity = _pint_quantity(number, unit_expression(unit, "speed", path), text, "speed",
-                              path)
+    quantity = _pint_quantity(number, spelled, text, "speed", path)
     if quantity.dimensionality != _registry().parse_units("Hz").dimensionality:
-        raise ModelError(f"{brief(text)} is not a speed (expected units like rad/s, rpm or "
-                         "Hz)", path)
+        raise ModelError(f"{brief(text)} is not a speed: {accepted_units('speed')}", path)
     root = quantity.to_root_units()
     units = dict(root.unit_items())
     if units == {"second": -1}:
@@ -286,27 +334,57 @@ def _split(text: str, what: str, path: str) -> tuple[float, str]:
 
 def _parse_string(text: str, kind: str, path: str) -> float:
     number, unit = _split(text, kind, path)
-    if unit == "":
-        return number
+    return _si(number, unit, kind, text, path) if unit else number
+
+
+def _si(number: float, unit: str, kind: str, text: str, path: str) -> float:
+    """``number unit`` in the SI unit of ``kind``: the table, else pint."""
     if kind == "speed":
         return speed_in_rad_s(number, unit, text, path)
-    if kind == "power" and unit in _CASE_SENSITIVE_POWER:
-        return number * _CASE_SENSITIVE_POWER[unit]
-    factor = _FAST[kind].get(unit.lower()) if kind != "power" else None
+    factor, spelled = _lookup(unit, kind, kind, text, path)
     if factor is not None:
         return number * factor
-    return _convert(number, unit, SI_UNITS[kind], text, kind, path)
+    return _convert(number, spelled, SI_UNITS[kind], text, kind, path)
 
 
-def _convert(number: float, unit: str, target: str, text: str, what: str,
+def _lookup(unit: str, table: str, what: str, text: str,
+            path: str) -> tuple[float | None, str]:
+    """(factor or None, the unit spelled for pint): ``unit`` in ``_TABLES[table]`` as
+    written, else in any case if that names one unit there; two units differing only in
+    case (mW, MW) are an error naming both."""
+    expression = unit_expression(unit, what, path, text)
+    exact, folded = _index(table)
+    if expression in exact:
+        return exact[expression], expression
+    found = folded.get(unit_expression(unit.lower(), what, path, text).lower(), {})
+    if len(found) > 1:
+        raise _refuse(text, what, f"{unit.strip()!r} could be {' or '.join(found.values())}; "
+                      "write the unit with its exact case", path)
+    return next(iter(found), None), expression
+
+
+@lru_cache(maxsize=None)
+def _index(table: str) -> tuple[dict[str, float], dict[str, dict[float, str]]]:
+    """``_TABLES[table]`` by the grammar's spelling, and by its lower case (with the
+    units, by factor, that share it)."""
+    exact: dict[str, float] = {}
+    folded: dict[str, dict[float, str]] = {}
+    for spellings, factor in _TABLES[table]:
+        for spelling in spellings:
+            exact[unit_expression(spelling, table, "")] = factor
+            key = unit_expression(spelling.lower(), table, "").lower()
+            folded.setdefault(key, {})[factor] = spellings[0]
+    return exact, folded
+
+
+def _convert(number: float, expression: str, target: str, text: str, what: str,
              path: str) -> float:
-    """``number unit`` in ``target`` units, through the grammar and pint."""
-    quantity = _pint_quantity(number, unit_expression(unit, what, path, text), text, what,
-                              path)
+    """``number expression`` (checked by the grammar) in ``target`` units, by pint."""
+    quantity = _pint_quantity(number, expression, text, what, path)
     try:
         return float(quantity.to(target).magnitude)
     except _pint().errors.DimensionalityError:
-        raise ModelError(f"{brief(text)} is not a {what} (expected units like {target})",
+        raise ModelError(f"{brief(text)} is not a {what}: {accepted_units(what)}",
                          path) from None
 
 
@@ -315,7 +393,9 @@ def _pint_quantity(number: float, expression: str, text: str, what: str, path: s
     try:
         return _registry().Quantity(number, expression)
     except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError) as exc:
-        raise ModelError(f"unknown unit in {brief(text)} ({exc})", path) from None
+        names = ", ".join(repr(n) for n in getattr(exc, "unit_names", ())) or "a unit"
+        raise ModelError(f"unknown unit {names} in {brief(text)}: {accepted_units(what)}",
+                         path) from None
     except Exception as exc:  # pint raises assorted errors for text it cannot read
         raise _refuse(text, what, str(exc), path) from None
 

@@ -258,8 +258,8 @@ def _ports(raw: list, components: Mapping[str, Component],
             raise ModelError("give at most one of power and torque", path)
         values = {key: parse_quantity(item[key], key, f"{path}.{key}")
                   for key in ("speed", "power", "torque") if item.get(key) is not None}
-        if "speed" in values:  # a speed without a unit is read as rad/s, but said so
-            caveat = bare_speed_caveat(item["speed"], f"{path}.speed")
+        for key in ("speed", "max_speed"):  # a speed without a unit is rad/s, but said so
+            caveat = bare_speed_caveat(item.get(key), f"{path}.{key}")
             if caveat is not None:
                 caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
@@ -267,4 +267,39 @@ def _ports(raw: list, components: Mapping[str, Component],
                           **machine_fields(item, path, folder)))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):
         raise ModelError("a train needs at least one input and one output port", "ports")
+    _check_port_names(ports, components)
     return tuple(ports)
+
+
+def _check_port_names(ports: list[Port], components: Mapping[str, Component]) -> None:
+    """A port's name addresses it -- a duty cycle's ``NAME.speed`` column (where a
+    component id addresses its port too), a machine's losses and flow-graph node -- so it
+    is not blank, not another port's name, and not the id of another component. A port
+    may bear its own component's id: both then address the same port. Names compare as
+    written apart from the spaces around them (a CSV header's are dropped)."""
+    named: dict[str, int] = {}
+    ports_of = {p.component: p.index for p in ports}
+    ids = {cid.strip(): cid for cid in components}
+    # what reports call a machine without a name (statics.machines.machine_name)
+    unnamed = {f"machine {components[p.component].raw_id}": p.index
+               for p in ports if p.is_machine and p.name is None}
+    for port in ports:
+        if port.name is None:
+            continue
+        name, path = port.name.strip(), f"{port.path}.name"
+        if not name:
+            raise ModelError("a port name must not be blank (leave name out for none)", path)
+        if name in named:
+            raise ModelError(f"port name {name!r} is already the name of ports[{named[name]}] "
+                             "(port names are unique)", path)
+        cid = ids.get(name)
+        if cid is not None and cid != port.component:
+            owner = f", the component of ports[{ports_of[cid]}]" if cid in ports_of else ""
+            raise ModelError(f"port name {name!r} is the id of component {cid!r}{owner}: a "
+                             "duty cycle's columns would not know which port it means; "
+                             "rename the port", path)
+        if name in unnamed:
+            raise ModelError(f"port name {name!r} is the name reports give the machine "
+                             f"ports[{unnamed[name]}], which has none; name that port, or "
+                             "rename this one", path)
+        named[name] = port.index

@@ -27,12 +27,14 @@ from powergraph.kinematics import solve_speeds
 from powergraph.model.efficiency_table import EfficiencyTable
 from powergraph.model.spec import Model, Port
 from powergraph.records import record
-from powergraph.units_si import rpm
+from powergraph.units_si import RPM_PER_RAD_S, rpm
 
 #: Newton iterations on the bus balances before giving up.
 MAX_STEPS = 40
 #: A bus balances when its residual is within this fraction of the train's power.
 RTOL = 1e-11
+#: A machine runs beyond its max_speed when faster by more than this fraction of it.
+SPEED_RTOL = 1e-9
 
 
 def electrical_power(power: float, efficiency: float) -> float:
@@ -272,16 +274,43 @@ def _machine_flow(model: Model, port: Port, flow) -> MachineFlow:
 
 
 def machine_caveats(result) -> tuple[Caveat, ...]:
-    """A machine that runs outside its efficiency map (``outside-map``): the map's edge
-    value was taken, which the map does not vouch for."""
+    """What a machine's data do not vouch for: a point outside its efficiency map
+    (``outside-map``, naming the axis and by how much; the map's edge value was taken),
+    a speed beyond its ``max_speed`` (``over-max-speed``, by more than round-off:
+    :data:`SPEED_RTOL`)."""
     caveats = []
     for machine, port in zip(result.machines, result.model.machines):
+        label = (f"{port.path} ({port.name})" if port.name else
+                 f"{port.path} (component {result.model.raw_id(port.component)})")
         if not machine.on_map:
-            table = port.efficiency
+            caveats.append(_outside_map(machine, port.efficiency, label, port.path))
+        if port.max_speed is not None and \
+                abs(machine.speed) > port.max_speed * (1 + SPEED_RTOL):
+            speed, top = abs(rpm(machine.speed)), rpm(port.max_speed)
             caveats.append(Caveat(
-                f"{machine.name} runs at {abs(rpm(machine.speed)):.6g} rpm and "
-                f"{abs(machine.torque):.6g} N·m, outside its efficiency map {table.source!r} "
-                f"(up to {rpm(table.speeds[-1]):.6g} rpm and {table.torques[-1]:.6g} N·m); "
-                f"the map's edge value {machine.efficiency:.4g} was taken",
-                f"{port.path}.efficiency", "outside-map"))
+                f"{label} runs at {speed:.6g} rpm, {speed - top:.4g} rpm above its "
+                f"max_speed of {top:.6g} rpm", f"{port.path}.max_speed", "over-max-speed"))
     return tuple(caveats)
+
+
+def _outside_map(machine: MachineFlow, table: EfficiencyTable, label: str,
+                 path: str) -> Caveat:
+    speed, torque = abs(machine.speed), abs(machine.torque)
+    beyond = [_beyond("speed", speed, table.speeds, RPM_PER_RAD_S, "rpm"),
+              _beyond("torque", torque, table.torques, 1.0, "N·m")]
+    return Caveat(f"{label} runs at {rpm(speed):.6g} rpm and {torque:.6g} N·m, outside its "
+                  f"efficiency map {table.source!r}: "
+                  f"{' and '.join(b for b in beyond if b)}; the map's edge value "
+                  f"{machine.efficiency:.4g} was taken", f"{path}.efficiency", "outside-map")
+
+
+def _beyond(axis: str, value: float, grid: tuple[float, ...], scale: float,
+            unit: str) -> str:
+    """``the speed is 1900 rpm above the map's highest, 4000 rpm``, or '' within the
+    ``grid`` (SI, as EfficiencyTable.at compares; ``scale`` converts for the text)."""
+    if grid[0] <= value <= grid[-1]:
+        return ""
+    side, edge, limit = (("above", "highest", grid[-1]) if value > grid[-1]
+                         else ("below", "lowest", grid[0]))
+    return (f"the {axis} is {abs(value - limit) * scale:.4g} {unit} {side} the map's "
+            f"{edge}, {limit * scale:.6g} {unit}")

@@ -168,3 +168,75 @@ components:
 links: [{type: mesh, between: [1, 2], efficiency: 0.98}]
 ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 2, role: output}]
 """
+
+
+# Issue 34, item 1: a port's name addresses it (a duty cycle's NAME.speed columns, where a
+# component id addresses its port too; a machine's losses and flow-graph node), so names
+# are unique, and no port is named like another component.
+THS = (Path(__file__).resolve().parents[2] / "models" / "ths2_power_split.yaml").read_text()
+
+
+def _refused(text: str) -> ModelError:
+    with pytest.raises(ModelError) as info:
+        loads_model(text)
+    return info.value
+
+
+def test_issue34_two_ports_with_one_name_are_refused_naming_the_earlier() -> None:
+    error = _refused(THS.replace("name: MG2", "name: MG1"))
+    assert str(error) == ("ports[2].name: port name 'MG1' is already the name of ports[1] "
+                          "(port names are unique)")
+    # spaces around a name do not make it another (a CSV header's are dropped)
+    error = _refused(THS.replace("name: MG2", "name: ' MG1 '"))
+    assert error.path == "ports[2].name" and "ports[1]" in error.message
+
+
+def test_issue34_a_port_named_like_another_ports_component_is_refused() -> None:
+    error = _refused(THS.replace("name: wheels", "name: S"))
+    assert str(error) == ("ports[3].name: port name 'S' is the id of component 'S', the "
+                          "component of ports[1]: a duty cycle's columns would not know "
+                          "which port it means; rename the port")
+
+
+def test_issue34_a_port_named_like_a_component_without_a_port_is_refused() -> None:
+    error = _refused(THS.replace("name: wheels", "name: P"))
+    assert error.path == "ports[3].name"
+    assert error.message.startswith("port name 'P' is the id of component 'P': ")
+
+
+def test_issue34_ids_and_names_compare_as_text() -> None:
+    text = PAIR.replace("SPEED", "10 rad/s").replace("role: output}", "role: output, name: 1}")
+    error = _refused(text)
+    assert error.path == "ports[1].name" and "component '1', the component of ports[0]" \
+        in error.message
+
+
+def test_issue34_a_port_may_bear_its_own_components_id() -> None:
+    model = loads_model(THS.replace("name: engine", "name: C"))
+    assert model.ports[0].name == "C" and model.ports[0].component == "C"
+
+
+def test_issue34_a_blank_port_name_is_refused() -> None:
+    error = _refused(THS.replace("name: wheels", "name: '  '"))
+    assert str(error) == "ports[3].name: a port name must not be blank (leave name out for none)"
+
+
+def test_issue34_a_port_named_like_an_unnamed_machine_is_refused() -> None:
+    # An unnamed machine on S is 'machine S' in the reports and the flow graph.
+    text = THS.replace("name: MG1, ", "").replace("name: MG2", "name: machine S")
+    error = _refused(text)
+    assert str(error) == ("ports[2].name: port name 'machine S' is the name reports give the "
+                          "machine ports[1], which has none; name that port, or rename this "
+                          "one")
+
+
+def test_issue34_a_shift_element_may_share_a_ports_name() -> None:
+    """Shift elements are addressed by the modes table only, and ports never are: the two
+    sets of names do not meet, so an element named like a port is fine (and two elements
+    with one name are refused, tests/model/test_shift.py)."""
+    model = loads_model("""name: t
+components: {0: {role: frame}, 1: {teeth: 20}, 2: {teeth: 40}, 3: {}}
+links: [{type: mesh, between: [1, 2]}, {type: clutch, name: out, between: [2, 3], engaged: true}]
+ports: [{component: 1, role: input, speed: 10 rad/s}, {component: 3, role: output, name: out}]
+""")
+    assert model.shift_elements[0].name == model.ports[1].name == "out"

@@ -1,7 +1,9 @@
 """Strict, bounded YAML reading: bad characters, size, aliases, nesting, tags, duplicates."""
 from __future__ import annotations
 
+import contextlib
 import os
+import threading
 from pathlib import Path
 
 import pytest
@@ -118,11 +120,30 @@ def test_size_limit_refuses_large_files_before_reading(tmp_path, monkeypatch) ->
     assert load_yaml_file(path) == {"name": "t"}
 
 
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
+def test_an_endless_pipe_is_read_only_up_to_the_limit(tmp_path) -> None:
+    fifo = tmp_path / "endless"
+    os.mkfifo(fifo)
+
+    def write_forever() -> None:
+        with contextlib.suppress(BrokenPipeError), open(fifo, "wb") as pipe:
+            while True:
+                pipe.write(b"# text without end\n" * 1000)
+
+    writer = threading.Thread(target=write_forever, daemon=True)
+    writer.start()
+    with size_limit(100_000):
+        with pytest.raises(ModelError, match="too large .*more than that; the limit is "
+                                             "100000 bytes"):
+            load_yaml_file(fifo)
+    writer.join(timeout=10)
+    assert not writer.is_alive()
+
+
 @pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="needs /dev/zero")
-def test_an_endless_device_is_read_only_up_to_the_limit() -> None:
-    with size_limit(1000):
-        with pytest.raises(ModelError, match="too large"):
-            load_yaml_file("/dev/zero")
+def test_dev_zero_stops_at_its_first_byte() -> None:
+    with pytest.raises(ModelError, match=r"NUL byte .* at byte 0 .*not a text file"):
+        load_yaml_file("/dev/zero")
 
 
 def test_missing_file_and_directory(tmp_path) -> None:

@@ -186,3 +186,77 @@ def test_check_counts_the_bus_balance_and_explains_a_missing_load(tmp_path, caps
     err = capsys.readouterr().err
     assert err.startswith("powergraph: error: ports: the loads are not determined")
     assert "0 bus balance(s)" in err and len(err.splitlines()) == 1
+
+
+# Issue 34, item 4: a machine's stated max_speed. By Willis, w_s = (1 + k) w_c - k w_r:
+# wheels at 1500 rpm put MG1 (the sun) at 3.6·2000 − 2.6·1500 = 3300 rpm; at 6000 rpm at
+# 7200 − 15600 = −8400 rpm (backwards: the comparison is with |speed|).
+def _over(result):
+    return [w for w in result.warnings if w.code == "over-max-speed"]
+
+
+def _with_max_speed(wheel_rpm: float, max_speed, port: int = 1) -> dict:
+    data = _device(wheel_rpm)
+    data["ports"][port]["max_speed"] = max_speed
+    return data
+
+
+def test_issue34_a_machine_beyond_its_max_speed_warns_naming_both_speeds():
+    result = solve(model_from_dict(_with_max_speed(1500, "3000 rpm")))
+    (warning,) = _over(result)
+    assert warning.path == "ports[1].max_speed"
+    assert warning.message == ("ports[1] (MG1) runs at 3300 rpm, 300 rpm above its "
+                               "max_speed of 3000 rpm")
+
+
+def test_issue34_max_speed_compares_the_magnitude_of_a_backward_speed():
+    result = solve(model_from_dict(_with_max_speed(6000, "8000 RPM")))
+    (warning,) = _over(result)
+    assert warning.message == ("ports[1] (MG1) runs at 8400 rpm, 400 rpm above its "
+                               "max_speed of 8000 rpm")
+    assert not _over(solve(model_from_dict(_with_max_speed(6000, "8500 rpm"))))
+
+
+def test_issue34_a_machine_at_or_below_its_max_speed_does_not_warn():
+    assert not _over(solve(model_from_dict(_with_max_speed(1500, "3300 rpm"))))
+    assert not _over(solve(model_from_dict(_with_max_speed(1500, "13500 rpm"))))
+    # without a name the port is named by its component
+    data = _with_max_speed(1500, "3000 rpm")
+    del data["ports"][1]["name"]
+    (warning,) = _over(solve(model_from_dict(data)))
+    assert warning.message.startswith("ports[1] (component S) runs at 3300 rpm")
+
+
+@pytest.mark.parametrize("port, value, path, words", [
+    (1, "-5 rpm", "ports[1].max_speed", "must be > 0 rad/s, got '-5 rpm'"),
+    (1, 0, "ports[1].max_speed", "must be > 0 rad/s, got 0"),
+    (1, "3000 rpm/s", "ports[1].max_speed", "is not a speed"),
+    (1, "off", "ports[1].max_speed", "expected a speed"),
+    (0, "3000 rpm", "ports[0].max_speed", "only a machine port (role: machine) has max_speed"),
+])
+def test_issue34_a_bad_max_speed_is_refused(port, value, path, words):
+    from powergraph.errors import ModelError
+
+    data = _with_max_speed(1500, True if value == "off" else value, port)  # YAML 1.1 `off`
+    with pytest.raises(ModelError) as info:
+        model_from_dict(data)
+    assert info.value.path == path and words in info.value.message
+
+
+def test_issue34_a_max_speed_without_a_unit_is_rad_s_with_a_caveat():
+    model = model_from_dict(_with_max_speed(1500, 500))
+    assert model.ports[1].max_speed == 500.0
+    (caveat,) = [c for c in model.warnings if c.code == "bare-speed"]
+    assert caveat.path == "ports[1].max_speed"
+
+
+def test_issue34_a_cycle_names_the_rows_beyond_a_max_speed():
+    import io
+
+    from powergraph.analyses.cycle import cycle
+
+    # wheels at 1500 rpm: MG1 at 3300 rpm; at 1000 rpm: 7200 − 2600 = 4600 rpm > 3500 rpm
+    model = model_from_dict(_with_max_speed(1500, "3500 rpm"))
+    points = "wheels.speed [rpm],duration [s]\n-1500,1\n-1000,1\n"
+    result = cycle(model, io.StringIO(points))
+    assert [r.warnings for r in result.rows] == [(), ("over-max-speed",)]
