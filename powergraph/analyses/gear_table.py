@@ -27,23 +27,29 @@ from powergraph.statics.modes import ModeResult, solve_mode
 class GearRow:
     """One mode of the table. Ratios are input over output speed; ``step`` is this
     forward gear's ratio over the next forward gear's (None for the last and reverse);
-    ``torques`` engaged element torque / input torque, ``slips`` open element slip /
-    input speed; ``coast_efficiency`` None when coasting has no consistent state
-    (``coast_verdict`` says why: a freewheel overruns)."""
+    ``torques`` engaged element torque / input torque (None when indeterminate, or for
+    every element when the input torque is zero), ``slips`` open element slip / input
+    speed (None for every element when the input stands still); ``efficiency`` None when
+    no power passes (``verdict`` says so); ``coast_efficiency`` None when coasting has no
+    consistent state or no power passes (``coast_verdict`` says why). ``input_torque``
+    (N·m) and ``input_speed`` (rad/s) are what the torques and slips are divided by, None
+    when zero (nothing to divide by)."""
 
     mode: str
     engaged: tuple[str, ...]
     ratio: float
     step: float | None
-    efficiency: float
+    efficiency: float | None
     coast_efficiency: float | None
     coast_verdict: str
     torques: Mapping[str, float | None]
-    slips: Mapping[str, float]
+    slips: Mapping[str, float | None]
     drag_loss: float
     freewheels: Mapping[str, str]
     verdict: str
     warnings: tuple = ()
+    input_torque: float | None = None
+    input_speed: float | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {"mode": self.mode, "engaged": list(self.engaged), "ratio": self.ratio,
@@ -52,7 +58,8 @@ class GearRow:
                 "coast_verdict": self.coast_verdict, "element_torques": dict(self.torques),
                 "slip_speeds": dict(self.slips), "drag_loss": self.drag_loss,
                 "freewheels": dict(self.freewheels), "verdict": self.verdict,
-                "warnings": [str(w) for w in self.warnings]}
+                "warnings": [str(w) for w in self.warnings],
+                "input_torque": self.input_torque, "input_speed": self.input_speed}
 
 
 @record
@@ -120,21 +127,52 @@ def _row(model: Model, mode: str, solve: Any) -> GearRow:
 
         raise ModelError(forward.verdict, f"modes.{mode}")
     result = forward.result
-    kin = result.kinematics
-    w_in = kin.speed(model.inputs[0].component)
+    w_in = result.kinematics.speed(model.inputs[0].component)
     t_in = result.external_torques[result.model.body_of[model.inputs[0].component]]
-    coast = coasting(model, forward, solve)
-    torques = {e.name: (None if e.torque is None else e.torque / t_in)
+    w_in = _unless_zero(w_in, result.kinematics.body_speeds.values())
+    t_in = _unless_zero(t_in, result.external_torques.values())
+    coast_efficiency, coast_verdict = _coast(model, forward, solve)
+    torques = {e.name: (None if e.torque is None or t_in is None else e.torque / t_in)
                for e in forward.elements if e.engaged}
-    slips = {e.name: e.slip_speed / w_in for e in forward.elements if not e.engaged}
+    slips = {e.name: None if w_in is None else e.slip_speed / w_in
+             for e in forward.elements if not e.engaged}
     return GearRow(mode=mode, engaged=forward.engaged, ratio=result.ratio, step=None,
-                   efficiency=result.efficiency,
-                   coast_efficiency=None if coast.result is None else coast.result.efficiency,
-                   coast_verdict=coast.verdict, torques=MappingProxyType(torques),
+                   efficiency=result.efficiency, coast_efficiency=coast_efficiency,
+                   coast_verdict=coast_verdict, torques=MappingProxyType(torques),
                    slips=MappingProxyType(slips),
                    drag_loss=sum(e.drag_loss for e in forward.elements),
-                   freewheels=forward.freewheels, verdict=forward.verdict,
-                   warnings=forward.warnings)
+                   freewheels=forward.freewheels,
+                   verdict=(forward.verdict if result.efficiency_note is None
+                            else _no_power(forward.verdict)),
+                   warnings=forward.warnings, input_torque=t_in, input_speed=w_in)
+
+
+#: The verdict of a mode through which no power passes (the solver's efficiency None).
+NO_POWER = "no power passes (the efficiency is undefined)"
+
+
+def _coast(model: Model, forward: ModeResult, solve: Any) -> tuple[float | None, str]:
+    """Coasting's efficiency and verdict; not solved when no power passes forward (the
+    input's power, zero, is what coasting feeds in at the output)."""
+    if forward.result.efficiency_note is not None:
+        return None, NO_POWER
+    coast = coasting(model, forward, solve)
+    if coast.result is None:
+        return None, coast.verdict
+    if coast.result.efficiency_note is not None:
+        return None, _no_power(coast.verdict)
+    return coast.result.efficiency, coast.verdict
+
+
+def _no_power(verdict: str) -> str:
+    return NO_POWER if verdict == "ok" else f"{verdict}; {NO_POWER}"
+
+
+def _unless_zero(value: float, among) -> float | None:
+    """``value``, or None when it is zero on the scale of ``among`` (relative values over
+    it are undefined)."""
+    scale = max((abs(v) for v in among), default=0.0)
+    return None if abs(value) <= 1e-9 * scale else float(value)
 
 
 def coasting(model: Model, forward: ModeResult, solve: Any = None) -> ModeResult:

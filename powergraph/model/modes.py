@@ -3,8 +3,9 @@ brakes engaged (rigid, exactly as a ``fixed`` link) and every other shift elemen
 (no constraint, only its drag in its slip speed).
 
 Freewheels are engaged or overrunning as ``freewheels`` says (default: overrunning); which
-state is consistent is decided by :func:`powergraph.statics.modes.solve_mode`, which tries
-them. Problems name the mode: ``modes.R: ...``.
+state is consistent is decided by :func:`powergraph.statics.modes.solve_mode`. Freewheels
+that join the same two bodies of the mode are one element in parallel
+(:func:`freewheel_groups`), decided once. Problems name the mode: ``modes.R: ...``.
 
 Examples
 --------
@@ -20,7 +21,8 @@ import dataclasses
 from typing import Iterable, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.spec import Model
+from powergraph.model.spec import Model, ShiftElement
+from powergraph.records import record
 
 
 def mode_path(mode: str) -> str:
@@ -88,3 +90,73 @@ def resolve(model: Model, mode: str | None,
 def _listing(names: Iterable[str]) -> str:
     names = sorted(names)
     return ", ".join(names) if names else "nothing"
+
+
+@record
+class FreewheelGroup:
+    """The freewheels of a mode that join the same two bodies: one element in parallel.
+
+    ``bodies`` ``(X, Y)`` are the bodies of the first member's ``between[0]`` and
+    ``between[1]``; ``orients[i]`` is +1 when member ``i`` is written ``[X side, Y side]``,
+    -1 when written reversed; ``senses[i]`` is +1 when member ``i`` allows
+    ``w_X - w_Y >= 0`` (holds a torque ``>= 0`` on the X side), -1 when it allows ``<= 0``.
+    """
+
+    members: tuple[ShiftElement, ...]
+    bodies: tuple[str, str]
+    orients: tuple[int, ...]
+    senses: tuple[int, ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(m.name for m in self.members)
+
+    @property
+    def links(self) -> tuple[int, ...]:
+        return tuple(m.index for m in self.members)
+
+    @property
+    def label(self) -> str:
+        """``F1``, ``F1+F2``, or ``F1+F2+…+F9 (9 in parallel)``."""
+        names = self.names
+        if len(names) <= 3:
+            return "+".join(names)
+        return f"{names[0]}+{names[1]}+…+{names[-1]} ({len(names)} in parallel)"
+
+
+def freewheel_groups(base: Model) -> tuple[FreewheelGroup, ...]:
+    """The freewheels ``base`` leaves to decide, grouped by the two bodies they join.
+
+    Parameters
+    ----------
+    base : Model
+        A model in a mode with its freewheels open (:func:`resolve` without
+        ``freewheels``).
+
+    Returns
+    -------
+    tuple of FreewheelGroup
+        In file order of their first members. A freewheel whose two members the mode
+        already joins (``idle``) is in none.
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> base = resolve(load_model("models/simpson_3speed.yaml"), "1")     # doctest: +SKIP
+    >>> [(g.names, g.bodies, g.senses) for g in freewheel_groups(base)]   # doctest: +SKIP
+    [(('F1',), ('c2', '0'), (1,))]
+    """
+    found: dict[frozenset, list[ShiftElement]] = {}
+    for element in base.shift_elements:
+        x, y = (base.body_of[c] for c in element.between)
+        if element.kind == "freewheel" and x != y:
+            found.setdefault(frozenset((x, y)), []).append(element)
+    groups = []
+    for members in found.values():
+        x = base.body_of[members[0].between[0]]
+        orients = tuple(1 if base.body_of[m.between[0]] == x else -1 for m in members)
+        senses = tuple(o * (1 if m.holds == "positive" else -1)
+                       for o, m in zip(orients, members))
+        bodies = (x, base.body_of[members[0].between[1]])
+        groups.append(FreewheelGroup(tuple(members), bodies, orients, senses))
+    return tuple(groups)

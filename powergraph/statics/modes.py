@@ -8,9 +8,12 @@ slip speed and drag loss of an open one.
 
 Freewheels: a freewheel ``holds: positive`` allows ``w_a - w_b >= 0``. Engaged, it must
 apply a torque ``>= 0`` to ``a``; overrunning, its slip ``w_a - w_b`` must be ``>= 0``
-(``negative``: both signs reversed). Every combination of states is tried; the one
-consistent combination is kept. None, or several, is a verdict (``ModeResult.verdict``),
-not a number.
+(``negative``: both signs reversed). Freewheels joining the same two bodies are one group
+in parallel, decided once (:func:`powergraph.model.modes.freewheel_groups`). The consistent
+combinations of group states are those of the exhaustive search, found by a pruned one
+(:mod:`powergraph.statics.freewheels`: only combinations consistent in speed are solved);
+at most ``MAX_FREEWHEELS`` groups. The one consistent combination is kept; none, or
+several, is a verdict (``ModeResult.verdict``), not a number.
 
 Examples
 --------
@@ -23,23 +26,24 @@ Examples
 """
 from __future__ import annotations
 
-import itertools
 from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import Caveat, KinematicsError, ModelError
 from powergraph.kinematics.speeds import degrees_of_freedom
-from powergraph.model.modes import engaged_in, mode_path, resolve
+from powergraph.model.modes import engaged_in, freewheel_groups, mode_path, resolve
 from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics.bearings import relative_speed
+from powergraph.statics.freewheels import ZERO, candidates, describe, settle
 from powergraph.statics.shift_torques import component_torques, joint_torque
 
-#: Torques and slips below this fraction of the input's are zero.
-ZERO = 1e-9
-#: At most this many freewheels are decided by trying every combination of states.
+#: At most this many freewheel groups (freewheels joining the same two bodies count once)
+#: are left to decide in one mode; more is refused (the search may grow as 2**n).
 MAX_FREEWHEELS = 10
+#: At most this many reasons are listed in a "no consistent freewheel state" verdict.
+MAX_NOTES = 12
 
 
 @record
@@ -50,6 +54,9 @@ class ShiftState:
     ``idle`` (a freewheel whose members are already joined rigidly); ``torque`` (N·m) is
     what an engaged element applies to its first member (None when statically
     indeterminate), ``slip_speed`` (rad/s) is ``w_a - w_b``, ``drag_loss`` (W) its drag.
+    Freewheels holding together in parallel: ``parallel`` names them all (empty
+    otherwise), ``torque`` is None (each one's share is indeterminate) and
+    ``parallel_torque`` is their total on this element's first member.
     """
 
     name: str
@@ -58,6 +65,8 @@ class ShiftState:
     torque: float | None
     slip_speed: float
     drag_loss: float
+    parallel: tuple[str, ...] = ()
+    parallel_torque: float | None = None
 
     @property
     def engaged(self) -> bool:
@@ -66,7 +75,8 @@ class ShiftState:
     def to_dict(self) -> dict[str, Any]:
         return {"name": self.name, "kind": self.kind, "state": self.state,
                 "engaged": self.engaged, "torque": self.torque,
-                "slip_speed": self.slip_speed, "drag_loss": self.drag_loss}
+                "slip_speed": self.slip_speed, "drag_loss": self.drag_loss,
+                "parallel": list(self.parallel), "parallel_torque": self.parallel_torque}
 
 
 @record
@@ -133,7 +143,8 @@ def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
     ------
     ModelError
         ``modes.NAME: ...`` for a mode that leaves the wrong DOF, locks the train, joins
-        what cannot be joined, or whose engaged elements' torques are indeterminate.
+        what cannot be joined, whose engaged elements' torques are indeterminate, or that
+        leaves more than ``MAX_FREEWHEELS`` freewheel groups to decide.
     """
     if solve is None:
         from powergraph.statics.solver import solve
@@ -142,48 +153,71 @@ def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
     fixed = None if mode is not None else engaged
     path = mode_path(mode) if mode is not None else "links"
     need = designed_dof(model)
-    trials, notes = [], []
-    free = _deciding_freewheels(model, mode, fixed)
-    for states in itertools.product((False, True), repeat=len(free)):
-        choice = dict(zip((f.name for f in free), states))
-        try:
-            derived = resolve(model, mode, choice, fixed)
-        except ModelError as error:
-            if not any(choice.values()):
-                raise
-            notes.append(f"{_describe(choice)}: {error.message}")
-            continue
-        dof = degrees_of_freedom(derived)
-        if free and dof != need:
-            notes.append(f"{_describe(choice)} leaves {dof} DOF")
-            continue
-        _check_dof(dof, need, engaged, path, lambda: _releasing(model, engaged, need))
-        result = solve(derived)
-        states_ = _states(model, derived, result, choice)
-        bad = [_inconsistency(model.shift_element(n), s) for n, s in states_.items()
-               if n in choice]
-        bad = [b for b in bad if b]
-        if bad:
-            notes.append(f"{_describe(choice)}: {'; '.join(bad)}")
-            continue
-        trials.append((choice, result, states_))
-    if not trials:
+    base = resolve(model, mode, None, fixed)
+    groups = freewheel_groups(base)
+    if not groups:
+        _check_dof(degrees_of_freedom(base), need, engaged, path,
+                   lambda: _releasing(model, engaged, need))
+        result = solve(base)
+        return _finish(model, mode, engaged, result, _states(model, base, result, {}), "ok",
+                       path)
+    if len(groups) > MAX_FREEWHEELS:
+        raise ModelError(f"{len(groups)} freewheels (or groups of freewheels joining the same "
+                         f"two members) to decide, more than the limit of {MAX_FREEWHEELS}",
+                         path)
+    first, count, notes = None, 0, []
+    for choice in candidates(base, groups, need, notes):
+        trial = _trial(model, mode, fixed, groups, choice, need, solve, path)
+        if isinstance(trial, str):
+            notes.append(trial)
+        else:
+            first, count = first or trial, count + 1
+    if first is None:
         return ModeResult(model=model, mode=mode, engaged=engaged, result=None, elements=(),
                           freewheels=MappingProxyType({}),
-                          verdict="no consistent freewheel state (" + "; ".join(notes) + ")")
-    choice, result, states = trials[0]
-    verdict = "ok" if len(trials) == 1 else (
-        f"{len(trials)} consistent freewheel states; the first is reported")
-    return _finish(model, mode, engaged, result, states, verdict, path)
+                          verdict="no consistent freewheel state (" + _listing(notes) + ")")
+    result, states, caveats = first
+    verdict = "ok" if count == 1 else (
+        f"{count} consistent freewheel states; the first is reported")
+    return _finish(model, mode, engaged, result, states, verdict, path, caveats)
 
 
-def _finish(model, mode, engaged, result, states, verdict, path) -> ModeResult:
-    warnings = []
+def _trial(model, mode, fixed, groups, choice, need, solve, path):
+    """The combination ``choice`` (joined? per group) solved: ``(result, states,
+    caveats)``, or why it is inconsistent (a string)."""
+    on = {m.name: joined for g, joined in zip(groups, choice) for m in g.members}
+    try:
+        derived = resolve(model, mode, on, fixed)
+    except ModelError as error:
+        return f"{describe(groups, choice)}: {error.message}"
+    dof = degrees_of_freedom(derived)
+    if dof != need:
+        return f"{describe(groups, choice)} leaves {dof} DOF"
+    try:
+        result = solve(derived)
+    except ModelError as error:     # e.g. loads that this state leaves undetermined
+        return f"{describe(groups, choice)}: {error.message}"
+    states = _states(model, derived, result, on)
+    bad, caveats = settle(groups, choice, result, states, _scale(result), path)
+    if bad:
+        return f"{describe(groups, choice)}: {'; '.join(bad)}"
+    return result, states, caveats
+
+
+def _listing(notes: list[str]) -> str:
+    if len(notes) <= MAX_NOTES:
+        return "; ".join(notes)
+    return "; ".join(notes[:MAX_NOTES]) + f"; and {len(notes) - MAX_NOTES} more"
+
+
+def _finish(model, mode, engaged, result, states, verdict, path, caveats=()) -> ModeResult:
+    warnings = list(caveats)
+    loaded = _scale(result) > 1e-300     # with no load anywhere, no element carries any
     for name, state in states.items():
         if state.state == "engaged" and state.torque is None:
             raise ModelError(f"{name}'s torque is statically indeterminate: another engaged "
                              "element joins the same members", path)
-        if state.state == "engaged" and abs(state.torque) <= ZERO * _scale(result):
+        if loaded and state.state == "engaged" and abs(state.torque) <= ZERO * _scale(result):
             warnings.append(Caveat(f"{name} is engaged but carries no torque", path,
                                    "redundant"))
     freewheels = {n: s.state for n, s in states.items()
@@ -192,13 +226,6 @@ def _finish(model, mode, engaged, result, states, verdict, path) -> ModeResult:
                       elements=tuple(states.values()),
                       freewheels=MappingProxyType(freewheels), verdict=verdict,
                       warnings=tuple(warnings))
-
-
-def _deciding_freewheels(model: Model, mode: str | None, fixed) -> list:
-    """Freewheels whose members the mode's clutches and brakes do not already join."""
-    base = resolve(model, mode, None, fixed)
-    return [e for e in model.shift_elements if e.kind == "freewheel"
-            and base.body_of[e.between[0]] != base.body_of[e.between[1]]]
 
 
 def _check_dof(dof: int, need: int, engaged: tuple[str, ...], path: str,
@@ -252,21 +279,6 @@ def _states(model: Model, derived: Model, result, choice: Mapping[str, bool]) ->
         states[element.name] = ShiftState(element.name, element.kind, state, torque,
                                           float(slip), float(loss))
     return states
-
-
-def _inconsistency(element, state: ShiftState) -> str | None:
-    sign = 1.0 if element.holds == "positive" else -1.0
-    if state.state == "holding" and state.torque is not None and sign * state.torque < 0:
-        return (f"{element.name} holding would carry {state.torque:.6g} N·m (it holds "
-                f"{element.holds} only)")
-    if state.state == "overrunning" and sign * state.slip_speed < 0:
-        return (f"{element.name} overrunning would slip at {state.slip_speed:.6g} rad/s "
-                f"(it overruns {element.holds} only)")
-    return None
-
-
-def _describe(choice: Mapping[str, bool]) -> str:
-    return ", ".join(f"{n} {'holding' if on else 'overrunning'}" for n, on in choice.items())
 
 
 def _scale(result) -> float:

@@ -2,6 +2,7 @@
 ratios, coasting, element torques over the input torque."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -74,3 +75,68 @@ def test_drag_column_is_the_open_elements_drag() -> None:
     assert low.efficiency == pytest.approx(0.95, rel=1e-12)      # ideal meshes: 1 - 50/1000
     assert low.slips["C"] == pytest.approx(1.0, rel=1e-12)
     assert high.drag_loss == 0.0 and high.slips["B"] == pytest.approx(1.0, rel=1e-12)
+
+
+def _ravigneaux_text_with_input(load: str) -> str:
+    text = (MODELS / "ravigneaux_4speed.yaml").read_text()
+    assert "speed: 2000 rpm, power: 10 kW" in text
+    return text.replace("speed: 2000 rpm, power: 10 kW", load)
+
+
+def test_issue34_zero_input_load_gear_table_says_no_power_passes() -> None:
+    """Input at 2000 rpm with no load (torque 0): nothing passes, so every efficiency is
+    undefined (None, as the solver says) and the torques over the input torque are
+    undefined (None); the ratios are the closed forms all the same, the slips over the
+    input speed too: 1st (C1, B2: carrier held) the large sun turns at
+    -z_s1/z_s2 w_in = -30/36 w_in, so B1 slips at -0.8333 w_in."""
+    from powergraph.model import loads_model
+    from powergraph.statics.modes import solve_mode
+    from powergraph.testing import assert_conservation
+
+    model = loads_model(_ravigneaux_text_with_input("speed: 2000 rpm, torque: 0 N*m"))
+    table = gear_table(model)
+    assert [r.ratio for r in table.rows] == pytest.approx(list(RATIOS.values()), rel=1e-12)
+    for row in table.rows:
+        assert row.efficiency is None and row.coast_efficiency is None
+        assert row.verdict == "no power passes (the efficiency is undefined)"
+        assert row.coast_verdict == row.verdict
+        assert row.input_torque is None and set(row.torques.values()) == {None}
+        assert row.warnings == ()          # no "carries no torque": nothing loads them
+    assert table.rows[0].slips["B1"] == pytest.approx(-30 / 36, rel=1e-12)
+    assert table.rows[0].input_speed == pytest.approx(2000 * math.pi / 30, rel=1e-12)
+    first = solve_mode(model, "1")         # what solve --mode says of the same gear
+    assert_conservation(first.result)
+    assert first.result.efficiency is None and first.result.efficiency_note is not None
+    text = table.text_report()
+    assert "no power passes" in text and "T -" in text and "indet." not in text
+    assert table.to_dict()["modes"][0]["efficiency"] is None
+
+
+def test_issue34_zero_input_load_modes_command_exits_0(tmp_path, capsys) -> None:
+    import json
+
+    from powergraph.cli.main import main
+
+    path = tmp_path / "unloaded.yaml"
+    path.write_text(_ravigneaux_text_with_input("speed: 2000 rpm, torque: 0 N*m"))
+    assert main(["modes", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert out.count("no power passes (the efficiency is undefined)") == 5
+    assert main(["modes", str(path), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["modes"][0]["element_torques"] == {"C1": None, "B2": None}
+
+
+def test_issue34_input_standing_still_gear_table_does_not_divide_by_zero() -> None:
+    """Input held at 0 rpm under 10 N·m: no power passes; the torques over the input
+    torque stay defined -- 1st gear (C1, B2): C1 passes the whole input torque (-1) --
+    and the slips over the (zero) input speed are undefined (None)."""
+    from powergraph.model import loads_model
+
+    text = _ravigneaux_text_with_input("speed: 0 rpm, torque: 10 N*m")
+    table = gear_table(loads_model(text))
+    first = table.rows[0]
+    assert first.efficiency is None and "no power passes" in first.verdict
+    assert first.torques["C1"] == pytest.approx(-1.0, rel=1e-12)
+    assert first.input_speed is None and set(first.slips.values()) == {None}
+    assert "w -" in table.text_report()
