@@ -5,7 +5,6 @@ import argparse
 
 from powergraph.cli.common import (
     check_figure_path,
-    load,
     new_axes,
     print_json,
     save_figure,

@@ -20,7 +20,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "draw", help="draw the power-flow diagram (PNG, SVG or PDF)",
         description="Draw the power-flow graph of a gear train: bodies, meshes (circles), "
-                    "motor and generator, arrows as wide as their power, labelled with "
+                    "the ports by their names, arrows as wide as their power, labelled with "
                     "the power and its share of the input power.")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("-o", "--output", required=True, metavar="FILE",

@@ -10,8 +10,8 @@ import numpy as np
 
 from powergraph.cli.cmd_modes import add_mode_option, gear_model
 from powergraph.cli.common import (check_figure_path, check_output_file, load,
-                                   number_option, print_json, say_wrote, whole_option,
-                                   write_atomically)
+                                   number_option, print_json, save_figure, say_wrote,
+                                   whole_option, write_atomically)
 from powergraph.errors import UsageError
 from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE
 
@@ -81,8 +81,7 @@ def run(args: argparse.Namespace) -> int:
     print_json(result.to_dict()) if args.json else print(result.text_report())
     if target is not None:
         ax = result.plot()
-        write_atomically(target, lambda tmp: ax.figure.savefig(tmp, dpi=150,
-                                                               bbox_inches="tight"))
+        save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
         say_wrote(target, data_on_stdout=args.json)
     if loss_target is not None:
         write_loss_map(loss_target, result, data_on_stdout=args.json)

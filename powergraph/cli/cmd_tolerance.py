@@ -10,7 +10,7 @@ import argparse
 
 from powergraph.cli.cmd_modes import add_mode_option, gear_model
 from powergraph.cli.common import (check_figure_path, load, print_json, say_wrote,
-                                   whole_option, write_atomically)
+                                   save_figure, whole_option)
 from powergraph.errors import UsageError
 
 
@@ -88,6 +88,6 @@ def _write_plot(result, target) -> None:
     axes = result.plot()
     fig = axes[0].figure
     try:
-        write_atomically(target, lambda tmp: fig.savefig(tmp, dpi=120))
+        save_figure(fig, target, dpi=120)
     finally:
         plt.close(fig)

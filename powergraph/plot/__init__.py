@@ -9,7 +9,9 @@ the numbers come from the result.
 - :mod:`powergraph.plot.wang2021`: the paper's Figs. 12–13 (``FigureData``);
 - :mod:`powergraph.plot.backlash`, :mod:`~powergraph.plot.cycloid`,
   :mod:`~powergraph.plot.volume`, :mod:`~powergraph.plot.sweep`,
-  :mod:`~powergraph.plot.compare`: the analyses' figures.
+  :mod:`~powergraph.plot.compare`: the analyses' figures;
+- :mod:`powergraph.plot.text`, :mod:`~powergraph.plot.fonts`: every text they draw is
+  plain (a name with ``$`` is drawn as written, never as mathtext), in fonts for any script.
 
 No backend is chosen here or anywhere in the library: figures use the backend the user
 chose (``MPLBACKEND``, ``matplotlib.use`` or the notebook's), so ``plt.show()`` works.

@@ -14,6 +14,8 @@ from typing import Mapping, Sequence
 
 import matplotlib.pyplot as plt
 
+from powergraph.plot.text import PLAIN, plain
+
 TERM_COLOURS = {"thickness": "tab:blue", "runout": "tab:orange", "bearing": "tab:green"}
 
 
@@ -43,12 +45,12 @@ def plot_centre_distance(curve, ax=None, label: str | None = None, bounds: bool 
                    label=f"Eq. (5) max {curve.maximum:.4f} mm")
         ax.axhline(curve.minimum, ls=":", lw=0.8, color=line.get_color(),
                    label=f"Eq. (6) min {curve.minimum:.4f} mm")
-    ax.set_xlabel("eccentric shaft angle (turns)")
-    ax.set_ylabel("centre distance |AB| (mm)")
+    ax.set_xlabel("eccentric shaft angle (turns)", **PLAIN)
+    ax.set_ylabel("centre distance |AB| (mm)", **PLAIN)
     ax.set_title(f"Centre distance, Z1 = {curve.z_internal}, Z2 = {curve.z_external} "
-                 f"(period {curve.period_turns} turns)")
+                 f"(period {curve.period_turns} turns)", **PLAIN)
     ax.margins(y=0.3)
-    ax.legend(fontsize="small", loc="upper center", ncol=3, frameon=False)
+    plain(ax.legend(fontsize="small", loc="upper center", ncol=3, frameon=False))
     return ax
 
 
@@ -77,10 +79,10 @@ def plot_lost_motion(pairs: Mapping[str, object], ax=None,
                edgecolor="white", label="after (at a'')" if i == 0 else None)
         for what, value in (printed or {}).get(name, ()):
             ax.plot([i - 0.4, i + 0.4], [value, value], color="black", lw=0.8)
-            ax.annotate(what, (i + 0.4, value), fontsize="x-small", va="center")
-    ax.set_xticks(range(len(labels)), labels)
-    ax.set_ylabel("lost motion (arcmin, internal gear)")
-    ax.set_title("Lost motion: before compensation (stacked terms) and after")
+            ax.annotate(what, (i + 0.4, value), fontsize="x-small", va="center", **PLAIN)
+    ax.set_xticks(range(len(labels)), labels, **PLAIN)
+    ax.set_ylabel("lost motion (arcmin, internal gear)", **PLAIN)
+    ax.set_title("Lost motion: before compensation (stacked terms) and after", **PLAIN)
     ax.margins(y=0.25)
-    ax.legend(fontsize="small", loc="upper center", ncol=4, frameon=False)
+    plain(ax.legend(fontsize="small", loc="upper center", ncol=4, frameon=False))
     return ax

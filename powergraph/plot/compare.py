@@ -6,6 +6,8 @@ from typing import Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def plot_comparison(rows: Sequence, ax=None):
     """Efficiency forward and back (and mesh rolling) per train, as grouped bars.
@@ -32,10 +34,10 @@ def plot_comparison(rows: Sequence, ax=None):
     for i, (label, values) in enumerate(series):
         bars = ax.bar(x + (i - 0.5) * width, values, width, label=label)
         ax.bar_label(bars, labels=[f"{v:.1f}" if np.isfinite(v) else "n/a" for v in values],
-                     fontsize=7, padding=2)
+                     fontsize=7, padding=2, **PLAIN)
     ax.axhline(0.0, color="black", linewidth=0.8)
-    ax.set_xticks(x, names, rotation=20, ha="right", fontsize=8)
-    ax.set_ylabel("efficiency (%)  — below 0: self-locking")
-    ax.set_title("Trains compared (virtual-power method)")
-    ax.legend(fontsize=8)
+    ax.set_xticks(x, names, rotation=20, ha="right", fontsize=8, **PLAIN)
+    ax.set_ylabel("efficiency (%)  — below 0: self-locking", **PLAIN)
+    ax.set_title("Trains compared (virtual-power method)", **PLAIN)
+    plain(ax.legend(fontsize=8))
     return ax

@@ -7,6 +7,8 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def plot_cycle(result: Any, ax: Any = None, **kwargs: Any):
     """Draw power in, power out and loss (kW) against time over the cycle; returns the axes.
@@ -23,8 +25,8 @@ def plot_cycle(result: Any, ax: Any = None, **kwargs: Any):
     for key, label in (("power_in", "in"), ("power_out", "out"), ("loss", "loss")):
         values = np.array([getattr(r, key) for r in result.rows]) / 1e3
         ax.stairs(values, t, label=label, **kwargs)
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("power [kW]")
-    ax.set_title(f"{result.name}: duty cycle")
-    ax.legend()
+    ax.set_xlabel("time [s]", **PLAIN)
+    ax.set_ylabel("power [kW]", **PLAIN)
+    ax.set_title(f"{result.name}: duty cycle", **PLAIN)
+    plain(ax.legend())
     return ax

@@ -9,6 +9,7 @@ import numpy as np
 import matplotlib.pyplot as plt
 
 from powergraph.analyses.cycloid.fluctuation import deviation_percent
+from powergraph.plot.text import PLAIN, plain
 
 
 def _axes(ax, projection: str | None = None):
@@ -47,10 +48,10 @@ def plot_ratio_fluctuation(result, ax=None, paper: bool = True):
     ax.axhline(result.ratio_nominal, color="0.4", lw=0.8, ls="--",
                label=f"no error: i = {result.ratio_nominal:g}")
     ax.set_xlim(0.0, 360.0)
-    ax.set_xlabel("crank (input) angle φ1, °")
-    ax.set_ylabel("ratio i = dφ1/dφ2")
-    ax.set_title(_title(result), fontsize=9)
-    ax.legend(fontsize=8, loc="best")
+    ax.set_xlabel("crank (input) angle φ1, °", **PLAIN)
+    ax.set_ylabel("ratio i = dφ1/dφ2", **PLAIN)
+    ax.set_title(_title(result), fontsize=9, **PLAIN)
+    plain(ax.legend(fontsize=8, loc="best"))
     return ax
 
 
@@ -70,12 +71,12 @@ def plot_deviation(result, ax=None, label: str | None = None):
             colour = line.get_color()
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlim(0.0, 360.0)
-    ax.set_xlabel("crank (input) angle φ1, °")
-    ax.set_ylabel("Δi = (i_ideal − i)/i_ideal, %")
+    ax.set_xlabel("crank (input) angle φ1, °", **PLAIN)
+    ax.set_ylabel("Δi = (i_ideal − i)/i_ideal, %", **PLAIN)
     if label is None:
-        ax.set_title(_title(result), fontsize=9)
+        ax.set_title(_title(result), fontsize=9, **PLAIN)
     else:
-        ax.legend(fontsize=8)
+        plain(ax.legend(fontsize=8))
     return ax
 
 
@@ -85,10 +86,10 @@ def plot_output_angle(result, ax=None):
     crank = np.degrees(result.crank_angle)
     ax.plot(crank, -np.degrees(result.output_angle), ".", ms=2, label="with profile error")
     ax.plot(crank, crank / result.ratio_nominal, lw=0.8, label="no error")
-    ax.set_xlabel("crank (input) angle φ1, °")
-    ax.set_ylabel("disc (output) angle −φ2, °")
-    ax.set_title(_title(result), fontsize=9)
-    ax.legend(fontsize=8)
+    ax.set_xlabel("crank (input) angle φ1, °", **PLAIN)
+    ax.set_ylabel("disc (output) angle −φ2, °", **PLAIN)
+    ax.set_title(_title(result), fontsize=9, **PLAIN)
+    plain(ax.legend(fontsize=8))
     return ax
 
 
@@ -107,11 +108,12 @@ def plot_fluctuation_study(study, ax=None, paper: bool = True):
                           label=f"paper: {study.paper_a:g}·d + {study.paper_b:g}·d·z1^-1.5")
     ax.scatter(study.teeth, study.profile_error, study.max_deviation_percent, color="k",
                s=10, depthshade=False, label="exact maxima (IT5…IT9)")
-    ax.set_xlabel("z1")
-    ax.set_ylabel("d, mm")
-    ax.set_zlabel("max |Δi|, %")
-    ax.set_title(f"maximum transmission fluctuation, m = {study.module:g} mm", fontsize=9)
-    ax.legend(fontsize=7, loc="upper right")
+    ax.set_xlabel("z1", **PLAIN)
+    ax.set_ylabel("d, mm", **PLAIN)
+    ax.set_zlabel("max |Δi|, %", **PLAIN)
+    ax.set_title(f"maximum transmission fluctuation, m = {study.module:g} mm", fontsize=9,
+                 **PLAIN)
+    plain(ax.legend(fontsize=7, loc="upper right"))
     return ax
 
 
@@ -128,8 +130,8 @@ def plot_fit_comparison(study, ax=None):
               label="paper's 2° method")
     span = [exact.min(), exact.max()]
     ax.loglog(span, span, color="0.5", lw=0.8)
-    ax.set_xlabel("exact max |Δi|, %")
-    ax.set_ylabel("surface / 2° method, %")
-    ax.set_title(f"m = {study.module:g} mm", fontsize=9)
-    ax.legend(fontsize=8)
+    ax.set_xlabel("exact max |Δi|, %", **PLAIN)
+    ax.set_ylabel("surface / 2° method, %", **PLAIN)
+    ax.set_title(f"m = {study.module:g} mm", fontsize=9, **PLAIN)
+    plain(ax.legend(fontsize=8))
     return ax

@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def plot_efficiency_map(result: Any, ax: Any = None, levels: int = 12) -> Any:
     """Filled contours of the efficiency (%) with labelled lines and the rated torque.
@@ -33,19 +35,19 @@ def plot_efficiency_map(result: Any, ax: Any = None, levels: int = 12) -> Any:
         filled = ax.contourf(torque, speed, percent, levels=levels, cmap="viridis")
         lines = ax.contour(torque, speed, percent, levels=filled.levels, colors="k",
                            linewidths=0.5)
-        ax.clabel(lines, fmt="%.2f", fontsize=7)
-        ax.figure.colorbar(filled, ax=ax, label="efficiency (%)")
+        plain(ax.clabel(lines, fmt="%.2f", fontsize=7))
+        ax.figure.colorbar(filled, ax=ax).set_label("efficiency (%)", **PLAIN)
     else:
         ax.text(0.5, 0.5, f"efficiency {percent.flat[0]:.3f} % everywhere\n"
                 "(constant mesh efficiencies)", ha="center", va="center",
-                transform=ax.transAxes)
+                transform=ax.transAxes, **PLAIN)
         ax.set_xlim(result.torques.min(), result.torques.max())
         ax.set_ylim(result.speeds_rpm.min(), result.speeds_rpm.max())
     if result.rated_torque is not None:
         ax.axvline(result.rated_torque, color="tab:red", lw=1.5, ls="--",
                    label=f"rated torque {result.rated_torque:g} N·m")
-        ax.legend(loc="lower right")
-    ax.set_xlabel("output torque (N·m)")
-    ax.set_ylabel("input speed (rpm)")
-    ax.set_title(f"{result.name}: efficiency map")
+        plain(ax.legend(loc="lower right"))
+    ax.set_xlabel("output torque (N·m)", **PLAIN)
+    ax.set_ylabel("input speed (rpm)", **PLAIN)
+    ax.set_title(f"{result.name}: efficiency map", **PLAIN)
     return ax

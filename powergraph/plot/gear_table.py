@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def plot_gear_table(table, ax=None):
     """Bars of |ratio| per mode (reverse hatched), efficiencies on the right axis.
@@ -32,24 +34,27 @@ def plot_gear_table(table, ax=None):
     ratios = [abs(r.ratio) for r in rows]
     bars = ax.bar(x, ratios, color=["#4c72b0" if r.ratio > 0 else "#dd8452" for r in rows],
                   hatch=None)
-    ax.bar_label(bars, labels=[f"{r.ratio:.3f}" for r in rows], fontsize=7, padding=2)
-    ax.set_xticks(x, [r.mode for r in rows])
-    ax.set_xlabel("mode")
-    ax.set_ylabel("|ratio| (input/output speed); orange: reverse")
+    ax.bar_label(bars, labels=[f"{r.ratio:.3f}" for r in rows], fontsize=7, padding=2,
+                 **PLAIN)
+    ax.set_xticks(x, [r.mode for r in rows], **PLAIN)   # mode names as written
+    ax.set_xlabel("mode", **PLAIN)
+    ax.set_ylabel("|ratio| (input/output speed); orange: reverse", **PLAIN)
     right = ax.twinx()
     # Forward gears joined in their order; a reverse gear is a point of its own.
     groups = [[i for i, r in enumerate(rows) if (r.ratio > 0) == sign] for sign in (True, False)]
     for k, index in enumerate(groups):
         style = "-" if k == 0 else ""
-        right.plot(index, [100 * rows[i].efficiency for i in index], "o" + style,
+        right.plot(index, [np.nan if rows[i].efficiency is None
+                           else 100 * rows[i].efficiency for i in index], "o" + style,
                    color="black", label=None if k else "efficiency, driving")
         right.plot(index, [np.nan if rows[i].coast_efficiency is None
                            else 100 * rows[i].coast_efficiency for i in index],
                    "s--" if k == 0 else "s", color="gray",
                    label=None if k else "efficiency, coasting")
-    right.set_ylabel("efficiency (%)")
-    right.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
-                 frameon=False)
+    right.set_ylabel("efficiency (%)", **PLAIN)
+    plain(right.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
+                       frameon=False))
     spread = table.spread
-    ax.set_title(f"{table.name}" + (f" — spread {spread:.3f}" if spread else ""))
+    ax.set_title(f"{table.name}" + (f" — spread {spread:.3f}" if spread else ""),
+                 **PLAIN)
     return ax

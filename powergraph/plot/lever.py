@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from collections import defaultdict
 
+from powergraph.plot.text import PLAIN
+
 SPACING = 1.6
 ARROW = 0.6
 
@@ -45,17 +47,19 @@ def plot_levers(diagram, ax=None):
             if node.speed is not None and scale:
                 dx = node.speed * scale
                 ax.annotate("", xy=(x + dx, node.position), xytext=(x, node.position),
-                            arrowprops={"arrowstyle": "->", "color": "#c44e52", "lw": 1.5})
+                            arrowprops={"arrowstyle": "->", "color": "#c44e52", "lw": 1.5},
+                            **PLAIN)
                 tips.append((x + dx, node.position))
         if len(tips) >= 2:
             ax.plot(*zip(*tips), color="#c44e52", linewidth=0.8, linestyle=":")
-        ax.text(x, min(ys) - 0.25, f"carrier {lever.carrier}", ha="center", fontsize=8)
+        ax.text(x, min(ys) - 0.25, f"carrier {lever.carrier}", ha="center", fontsize=8,
+                **PLAIN)
     for body, points in places.items():
         for (x0, y0), (x1, y1) in zip(points, points[1:]):
             if x0 != x1:
                 ax.plot([x0, x1], [y0, y1], color="gray", linestyle="--", linewidth=0.8)
     title = diagram.title
-    ax.set_title(title + ("\narrows: speeds" if scale else ""), fontsize=10)
+    ax.set_title(title + ("\narrows: speeds" if scale else ""), fontsize=10, **PLAIN)
     ax.set_xlim(-1.0, (len(diagram.levers) - 1) * SPACING + 1.0)
     ax.margins(y=0.2)
     ax.set_axis_off()
@@ -66,7 +70,9 @@ def _node(ax, x: float, node) -> None:
     ax.plot([x], [node.position], "o", color="white", markeredgecolor="black", markersize=8,
             zorder=3)
     label = f"{node.component}" + (f" [{', '.join(node.elements)}]" if node.elements else "")
-    ax.text(x - 0.12, node.position, label, ha="right", va="center", fontsize=8)
+    # on a white ground: the dashed lines joining members of one body pass behind it
+    ax.text(x - 0.12, node.position, label, ha="right", va="center", fontsize=8, zorder=4,
+            bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none"}, **PLAIN)
     if node.grounded:
         ax.plot([x + 0.08, x + 0.3], [node.position] * 2, color="black", linewidth=1)
         for i in range(4):

@@ -1,7 +1,8 @@
 """Power-flow diagrams in the style of Wang (2021), Figs. 5-10 (drawing only).
 
 Bodies are boxes labelled with their components ("2/3"), meshes are circles, couplings
-squares, the motor ⊙ and the generator ⊗; every arrow carries a power, its width
+squares, the input port ⊙ and the output port ⊗ captioned with the ports' names
+(:meth:`~powergraph.plot.layout.view.FlowView.text`); every arrow carries a power, its width
 proportional to it, labelled with the power and its share of the input power P.
 Zero-power links (the held frame's, the paper's converting principle 1) are dashed.
 Bearings with friction or drag ("bearing 2-7") and body drags ("drag 6") are rounded
@@ -37,6 +38,7 @@ from powergraph.plot.layout.layout import FlowLayout, LayoutStyle, NodePlace, la
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.place import LABEL_PAD
 from powergraph.plot.layout.view import FlowView, flow_view, format_power, format_share
+from powergraph.plot.text import PLAIN, plain
 
 INK = "#1f3b5c"
 COLOURS = {"power": "#2c6fad", "zero": "#8a8a8a", "loss": "#b5651d", "loop": "#c0392b"}
@@ -91,9 +93,11 @@ def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
 
 
 def _texts(layout: FlowLayout) -> list[str]:
-    """The names drawn: every node's text or caption, the model's name, the held body."""
-    names = [layout.view.name] + ([layout.view.held] if layout.view.held else [])
-    return [n.name for n in layout.nodes.values() if n.kind != "loss"] + names
+    """The names drawn: every node's text or caption (a port's name), the model's name,
+    the held body."""
+    view = layout.view
+    names = [view.name] + ([view.held] if view.held else [])
+    return [view.text(n.node) for n in layout.nodes.values() if n.kind != "loss"] + names
 
 
 def _draw(fig, ax, view: FlowView, result: Any, font_size: float, legend: bool,
@@ -112,7 +116,7 @@ def _draw(fig, ax, view: FlowView, result: Any, font_size: float, legend: bool,
     ax.powergraph_heads = NodeMap(heads)
     ax.powergraph_layout, ax.powergraph_view = layout, view
     ax.set_title(_title(view, result, subtitle), fontsize=font_size * 1.1 * scale,
-                 color=INK, linespacing=1.5, parse_math=False)
+                 color=INK, linespacing=1.5, **PLAIN)
     if legend:
         _legend(ax, view, scale, font_size)
     return ax
@@ -129,7 +133,7 @@ def _measurer(fig):
 
     def size(text: str, font: float) -> tuple[float, float]:
         if (text, font) not in cache:
-            probe = fig.text(0, 0, text, fontsize=font, parse_math=False)
+            probe = fig.text(0, 0, text, fontsize=font, **PLAIN)
             box = probe.get_window_extent()
             probe.remove()
             cache[(text, font)] = (box.width * INCH / fig.dpi, box.height * INCH / fig.dpi)
@@ -176,13 +180,13 @@ def _draw_node(ax, node: NodePlace, s: float, style: LayoutStyle):
         text = ax.text(node.x, node.y, node.shape.text, ha="center", va="center",
                        fontsize=font, color=COLOURS["loss"] if kind == "loss" else INK,
                        zorder=5, style="italic" if kind == "loss" else "normal",
-                       parse_math=False)
+                       **PLAIN)
         if kind == "frame":
             text.set_bbox(dict(boxstyle="round,pad=0.12", fc="white", ec="none"))
     elif node.shape.caption:
         cx, cy = node.caption_box.center
         text = ax.text(cx, cy, node.shape.caption, ha="center", va="center",
-                       fontsize=font * 0.9, color=INK, zorder=5, parse_math=False)
+                       fontsize=font * 0.9, color=INK, zorder=5, **PLAIN)
     return patch, text
 
 
@@ -259,7 +263,7 @@ def _draw_edge(ax, edge, s: float, style: LayoutStyle, heads: dict):
     label = ax.text(*edge.label_xy, edge.label, ha="center", va="center", fontsize=font,
                     color=colour if not edge.zero else "#666666", zorder=6,
                     bbox=dict(boxstyle=f"round,pad={LABEL_PAD / style.label_size:.3f}",
-                              fc="white", ec="none", alpha=0.92), parse_math=False)
+                              fc="white", ec="none", alpha=0.92), **PLAIN)
     return arrow, label
 
 
@@ -295,8 +299,6 @@ def _legend(ax, view, s: float, font_size: float) -> None:
                                               else f"frame {view.held}")))
     if view.loop_edges:
         handles.append(Line2D([], [], color=COLOURS["loop"], lw=2.5, label="circulating"))
-    key = ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+    plain(ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
                     ncol=len(handles), frameon=False, fontsize=font_size * 0.85 * s,
-                    handlelength=1.6, columnspacing=1.2, borderaxespad=0.3)
-    for text in key.get_texts():    # a body's name is text, never mathtext
-        text.set_parse_math(False)
+                    handlelength=1.6, columnspacing=1.2, borderaxespad=0.3))

@@ -14,6 +14,8 @@ from typing import Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def efficiency_plot(x: Sequence[float], curves: Mapping[str, Sequence[float]], xlabel: str,
                     ax: plt.Axes | None = None, title: str | None = None,
@@ -69,11 +71,11 @@ def curve_plot(curves: Mapping[str, tuple[Sequence[float], Sequence[float]]], xl
             low = min(low, float(np.nanmin(ys)))
     if zero_line and low <= 0:
         ax.axhline(0.0, color="0.3", lw=0.8, ls="--", label=zero_line)
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
+    ax.set_xlabel(xlabel, **PLAIN)
+    ax.set_ylabel(ylabel, **PLAIN)
     if title:
-        ax.set_title(title, fontsize=9)
+        ax.set_title(title, fontsize=9, **PLAIN)
     ax.grid(True, alpha=0.3)
     if any(curves) and len(curves) <= 12 or zero_line and low <= 0:
-        ax.legend(fontsize=7)
+        plain(ax.legend(fontsize=7))
     return ax

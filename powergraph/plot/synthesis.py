@@ -16,6 +16,8 @@ from typing import Any, Sequence
 
 import matplotlib.pyplot as plt
 
+from powergraph.plot.text import PLAIN
+
 AXIS_LETTERS = "abcdefghijklmnopqrstuvwxyz"
 
 
@@ -48,7 +50,7 @@ def plot_graphs(graphs: Sequence[Any], ax: plt.Axes | None = None, columns: int 
     ax.set_aspect("equal")
     ax.axis("off")
     ax.set_title(title or f"{len(graphs)} train graphs: thick = turning pair (axis letter), "
-                          "thin = gear pair (/carrier)", fontsize=9)
+                          "thin = gear pair (/carrier)", fontsize=9, **PLAIN)
     return ax
 
 
@@ -61,13 +63,13 @@ def _draw_one(ax: plt.Axes, graph: Any, x0: float, y0: float) -> None:
         ax.plot([xa, xb], [ya, yb], color="black", lw=3.0, solid_capstyle="round", zorder=1)
         ax.text((xa + xb) / 2, (ya + yb) / 2, AXIS_LETTERS[axis % 26], fontsize=6,
                 color="tab:blue", ha="center", va="center", zorder=3,
-                bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none"})
+                bbox={"boxstyle": "round,pad=0.1", "fc": "white", "ec": "none"}, **PLAIN)
     for u, v, carrier in graph.gear_pairs:
         (xa, ya), (xb, yb) = where[u], where[v]
         ax.plot([xa, xb], [ya, yb], color="tab:red", lw=0.9, zorder=1)
         ax.text((xa + xb) / 2, (ya + yb) / 2 - 0.12, f"/{carrier}", fontsize=5,
-                color="tab:red", ha="center", va="center", zorder=3)
+                color="tab:red", ha="center", va="center", zorder=3, **PLAIN)
     for k, (x, y) in where.items():
         ax.plot([x], [y], "o", ms=9, mfc="white", mec="black", zorder=2)
-        ax.text(x, y, str(k), fontsize=6, ha="center", va="center", zorder=4)
-    ax.text(x0, y0 - 1.45, graph.name or "", fontsize=6, ha="center", va="center")
+        ax.text(x, y, str(k), fontsize=6, ha="center", va="center", zorder=4, **PLAIN)
+    ax.text(x0, y0 - 1.45, graph.name or "", fontsize=6, ha="center", va="center", **PLAIN)

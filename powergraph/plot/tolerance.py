@@ -17,6 +17,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def _axes(ax, figsize=(6.4, 4.0)):
     if ax is not None:
@@ -53,11 +55,11 @@ def output_histogram(values: np.ndarray, label: str, limits: Sequence[float] = (
         ax.axvline(limit, color="#C44E52", linestyle="--", linewidth=1.5,
                    label=f"spec {limit:g}")
     if len(limits):
-        ax.legend(frameon=False)
-    ax.set_xlabel(label)
-    ax.set_ylabel("probability density")
+        plain(ax.legend(frameon=False))
+    ax.set_xlabel(label, **PLAIN)
+    ax.set_ylabel("probability density", **PLAIN)
     if title:
-        ax.set_title(title)
+        ax.set_title(title, **PLAIN)
     return ax
 
 
@@ -83,12 +85,12 @@ def tornado(indices: Mapping[str, Mapping[str, float]], ax=None, title: str | No
     ax.barh(y, [s["total"] for _, s in ranked], color="#8DA0CB", label="total")
     ax.barh(y, [s["first"] for _, s in ranked], height=0.45, color="#1F3A93",
             label="first order")
-    ax.set_yticks(y, names)
+    ax.set_yticks(y, names, **PLAIN)
     ax.set_xlim(0, max(1.0, max((s["total"] for _, s in ranked), default=1.0)))
-    ax.set_xlabel("Sobol index")
-    ax.legend(frameon=False, loc="lower right")
+    ax.set_xlabel("Sobol index", **PLAIN)
+    plain(ax.legend(frameon=False, loc="lower right"))
     if title:
-        ax.set_title(title)
+        ax.set_title(title, **PLAIN)
     return ax
 
 

@@ -13,6 +13,8 @@ from typing import Mapping, Sequence
 
 import matplotlib.pyplot as plt
 
+from powergraph.plot.text import PLAIN, plain
+
 
 def pitch_circle_error_plot(teeth: Sequence[int], relative_error: Sequence[float],
                             ax: plt.Axes | None = None,
@@ -43,14 +45,15 @@ def pitch_circle_error_plot(teeth: Sequence[int], relative_error: Sequence[float
     for label, (z, error) in (marks or {}).items():
         ax.plot([z], [100 * error], "o", ms=7, mfc="none", label=label)
         ax.annotate(f"z = {z}: {100 * error:.2f} %", (z, 100 * error),
-                    textcoords="offset points", xytext=(8, 6), fontsize=8)
-    ax.set_xlabel("number of teeth z")
-    ax.set_ylabel("volume error of π(mz/2)²·B  [%]")
+                    textcoords="offset points", xytext=(8, 6), fontsize=8,
+                    **PLAIN)
+    ax.set_xlabel("number of teeth z", **PLAIN)
+    ax.set_ylabel("volume error of π(mz/2)²·B  [%]", **PLAIN)
     ax.set_title(title or "Pan & Wang Eqs. (1)–(2): error of the pitch-circle volume\n"
                           "(α = 20°, addendum 1·m, dedendum 1.25·m, tip fillet 0.38·m, x = 0)",
-                 fontsize=9)
+                 fontsize=9, **PLAIN)
     ax.grid(True, alpha=0.3)
     ax.margins(y=0.12)
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=8)
+    plain(ax.legend(fontsize=8))
     return ax

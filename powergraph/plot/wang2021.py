@@ -15,6 +15,7 @@ import textwrap
 from typing import Any
 
 from powergraph.methods.figures import FigureData
+from powergraph.plot.text import PLAIN, plain
 
 #: Line style per curve key: the paper's method solid, the virtual-power method broken.
 STYLES: dict[str, dict[str, Any]] = {
@@ -56,12 +57,12 @@ def plot_figure(data: FigureData, ax: Any = None, marks: bool = True,
         ax.plot(curve.x, curve.y, label=curve.label, **STYLES.get(curve.key, {}))
     if marks:
         _marks(ax, data)
-    ax.set_xlabel(data.xlabel)
-    ax.set_ylabel(data.ylabel)
+    ax.set_xlabel(data.xlabel, **PLAIN)
+    ax.set_ylabel(data.ylabel, **PLAIN)
     if title:
-        ax.set_title(data.title)
+        ax.set_title(data.title, **PLAIN)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize="small")
+    plain(ax.legend(fontsize="small"))
     return ax
 
 
@@ -72,7 +73,7 @@ def _marks(ax: Any, data: FigureData) -> None:
         above = mark.curve == "wang2021"   # the paper's values above, the others below
         ax.annotate(mark.text, (mark.x, mark.y), textcoords="offset points",
                     xytext=(-6, 7) if above else (4, -12), ha="right" if above else "left",
-                    fontsize="x-small")
+                    fontsize="x-small", **PLAIN)
 
 
 def plot_paper_trend(data: FigureData, ax: Any = None, curve: str = "wang2021") -> Any:
@@ -87,9 +88,9 @@ def plot_paper_trend(data: FigureData, ax: Any = None, curve: str = "wang2021") 
     ax.plot(line.x, line.y, label=line.label, **STYLES.get(curve, {}))
     _marks(ax, FigureData(data.key, data.title, data.xlabel, data.ylabel, (line,),
                           data.caption, tuple(m for m in data.marks if m.curve == curve)))
-    ax.set_xlabel(data.xlabel)
-    ax.set_ylabel(f"{data.ylabel} (zoom)")
-    ax.set_title("the paper's equations alone")
+    ax.set_xlabel(data.xlabel, **PLAIN)
+    ax.set_ylabel(f"{data.ylabel} (zoom)", **PLAIN)
+    ax.set_title("the paper's equations alone", **PLAIN)
     ax.grid(True, alpha=0.3)
     ax.ticklabel_format(axis="y", useOffset=False)
     return ax
@@ -106,4 +107,4 @@ def add_caption(figure: Any, text: str) -> Any:
     figure.set_size_inches(width, total)
     figure.subplots_adjust(bottom=(0.65 + extra) / total, top=1 - 0.45 / total)
     return figure.text(0.015, 0.08 / total, wrapped, ha="left", va="bottom",
-                       fontsize="small")
+                       fontsize="small", **PLAIN)

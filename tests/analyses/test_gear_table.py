@@ -125,6 +125,9 @@ def test_issue34_zero_input_load_modes_command_exits_0(tmp_path, capsys) -> None
     assert main(["modes", str(path), "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["modes"][0]["element_torques"] == {"C1": None, "B2": None}
+    figure = tmp_path / "unloaded.png"
+    assert main(["modes", str(path), "-o", str(figure)]) == 0     # no efficiency to mark
+    assert figure.stat().st_size > 0
 
 
 def test_issue34_input_standing_still_gear_table_does_not_divide_by_zero() -> None:

@@ -182,3 +182,20 @@ def test_names_no_font_can_draw_are_named_once(tmp_path, capsys, monkeypatch) ->
     assert line.startswith("powergraph: warning: no installed font can draw")
     assert all(repr(name) in line for name in ("太阳轮", "遊星歯車", "🚀 carrier"))
     assert "fonts-noto-cjk" in line and "Glyph" not in line
+
+
+def test_ports_are_labelled_by_their_names(tmp_path, capsys, monkeypatch) -> None:
+    """Issue 34: the hybrid's output is "wheels" (not "generator" beside MG1), its input
+    "engine"; nothing on the figure says motor or generator."""
+    from matplotlib.figure import Figure
+    from matplotlib.text import Text
+
+    figures, savefig = [], Figure.savefig
+    monkeypatch.setattr(Figure, "savefig",
+                        lambda self, *a, **k: (figures.append(self), savefig(self, *a, **k)))
+    status, _, err = draw(capsys, str(ROOT / "models" / "ths2_power_split.yaml"),
+                          "-o", str(tmp_path / "ths2.png"))
+    assert status == 0, err
+    shown = {t.get_text() for t in figures[0].findobj(Text)}
+    assert {"engine", "wheels", "MG1", "MG2"} <= shown
+    assert not any(word in text for text in shown for word in ("motor", "generator"))

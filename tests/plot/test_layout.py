@@ -321,3 +321,45 @@ def test_a_very_long_id_does_not_widen_the_diagram(solve_ok) -> None:
     width = lambda layout: layout.bounds.x1 - layout.bounds.x0  # noqa: E731
     assert width(long) < 2 * width(plain)
     assert long.nodes[Node("body", "S" * 400)].shape.text == "S" * 39 + "…"
+
+
+TWO_INPUTS = """
+name: two inputs
+components:
+  0: {role: frame}
+  s: {teeth: 20}
+  p: {teeth: 20, count: 3}
+  r: {teeth: 60, internal: true}
+  c: {}
+links:
+  - {type: mesh, between: [s, p], carrier: c, efficiency: 0.98}
+  - {type: mesh, between: [p, r], carrier: c, efficiency: 0.99}
+ports:
+  - {component: s, role: input, speed: 1000 rpm, power: 1 kW}
+  - {component: r, role: input, name: ring drive, speed: 200 rpm}
+  - {component: c, role: output}
+"""
+
+
+def test_ports_are_captioned_with_their_names(solve_ok) -> None:
+    """Issue 34: a hybrid's wheels are captioned "wheels", not "generator" beside MG1;
+    the nodes keep their kinds and names (``motor``, ``generator``)."""
+    view = flow_view(solve_ok(pg.load_model(str(ROOT / "models" / "ths2_power_split.yaml"))))
+    assert view.text(Node("motor", "motor")) == "engine"
+    assert view.text(Node("generator", "generator")) == "wheels"
+    assert view.text(Node("machine", "MG1")) == "MG1"          # a machine: its port's name
+    assert view.text(Node("body", "R/R2")) == "R/R2"           # others: their names
+    layout = layout_flow(view)
+    captions = {p.node: p.shape.caption for p in layout.nodes.values() if p.shape.caption}
+    assert captions == {Node("motor", "motor"): "engine",
+                        Node("generator", "generator"): "wheels"}
+
+
+def test_unnamed_ports_are_captioned_with_their_role(rv40e, solve_ok) -> None:
+    """Without a name: "input"/"output", with the component's id when there are several."""
+    layout = layout_flow(flow_view(solve_ok(rv40e)))
+    captions = {p.node.name: p.shape.caption for p in layout.nodes.values() if p.shape.caption}
+    assert captions == {"motor": "input", "generator": "output"}
+    view = flow_view(solve_ok(loads_model(TWO_INPUTS)))
+    assert {n.name: view.text(n) for n in view.kinds if n.kind in ("motor", "generator")} \
+        == {"motor s": "input s", "motor r": "ring drive", "generator": "output"}

@@ -195,7 +195,8 @@ def test_rv40e_paper_views(solve_ok) -> None:
     assert label.get_text() == "0 W\n0 %"
     nodes = ax.powergraph_nodes
     assert nodes["2/3"][1].get_text() == "2/3" and nodes["mesh 1-2"][1].get_text() == "1-2"
-    assert nodes["motor"][1].get_text() == "motor"
+    assert nodes["motor"][1].get_text() == "input"       # the port has no name: its role
+    assert nodes["generator"][1].get_text() == "output"
     assert nodes["0/5"][0].get_hatch()                           # the held frame
     seen = plot_power_flow(result, "3")
     assert seen.powergraph_nodes["2/3"][0].get_hatch()           # 2/3 held ...

@@ -34,7 +34,8 @@ LABEL_PAD = 1.5
 def place(view: FlowView, skeleton: Skeleton, text_size: TextSize = estimate_text_size,
           style: LayoutStyle = LayoutStyle(), spread: float = 1.0) -> FlowLayout:
     """Geometry of ``skeleton`` with gaps scaled by ``spread`` (>= 1)."""
-    shapes = {n: node_shape(n.name, view.kinds.get(n, "body"), text_size, style.font_size)
+    shapes = {n: node_shape(view.text(n), view.kinds.get(n, "body"), text_size,
+                            style.font_size)      # a port captioned with its name
               for n in skeleton.layer_of if n.kind != WAYPOINT}
     stub = node_shape("loss", "loss", text_size, style.font_size)
     stub_of = {view.flows[i].source_node: name for i, name in skeleton.stubs.items()}

@@ -18,7 +18,8 @@ Examples
 """
 from __future__ import annotations
 
-from typing import Any, Mapping
+from dataclasses import field
+from typing import Any, Iterable, Mapping
 
 import networkx as nx
 
@@ -26,7 +27,7 @@ from powergraph.errors import UsageError
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.records import record
 from powergraph.statics.flow import (BODY, FRAME, GENERATOR, GROUND, KINDS, LOSS, MOTOR, Flow,
-                                     Node, circulating_power)
+                                     Node, circulating_power, port_node)
 from powergraph.format import format_power, format_share  # noqa: F401  (re-exported)
 
 
@@ -58,6 +59,11 @@ class FlowView:
     reference : tuple of Flow
         The actual flows, when this view is from a moving body: a layout hint that keeps
         members idle in this view (zero power) in their actual order.
+    labels : NodeMap
+        Node -> the text drawn for it, when that is not its name: the input and output
+        ports (nodes of kind ``motor``/``generator``, named so) are captioned with the
+        port's name, else with their role (``input``, ``output``; ``input 1``... when the
+        train has several). See :meth:`text`.
     """
 
     name: str
@@ -70,6 +76,7 @@ class FlowView:
     loop_edges: frozenset
     method: str = "virtual-power"
     reference: tuple[Flow, ...] = ()
+    labels: Mapping[Node, str] = field(default_factory=NodeMap)
 
     @property
     def title(self) -> str:
@@ -85,6 +92,10 @@ class FlowView:
     def is_zero(self, flow: Flow) -> bool:
         """A flow too small to draw as carrying power (frame links, rounding noise)."""
         return flow.power <= 1e-9 * max(self.largest, 1e-300)
+
+    def text(self, node: Node) -> str:
+        """What a reader sees for ``node``: its label (a port's name), else its name."""
+        return self.labels.get(node, node.name)
 
     def label(self, flow: Flow) -> str:
         """``'2.06 kW\\n90.9 %'``: the power and its share of the input power."""
@@ -123,7 +134,38 @@ def flow_view(result: Any, frame: str | int | None = None) -> FlowView:
                     circulating=circulating_power(list(flows)),
                     loop_edges=loop_edges(flows),
                     method=str(getattr(result, "method", "virtual-power")),
-                    reference=tuple(_flows(result, None)) if frame_body is not None else ())
+                    reference=tuple(_flows(result, None)) if frame_body is not None else (),
+                    labels=NodeMap(port_labels(result, model, kinds)))
+
+
+#: The role a port node's kind stands for (what an unnamed port is called in a drawing).
+ROLES = {MOTOR: "input", GENERATOR: "output"}
+
+
+def port_labels(result: Any, model: Any, nodes: Iterable[Node]) -> dict[Node, str]:
+    """The caption of every input and output port node among ``nodes``: the port's
+    ``name``, else its role (``input``/``output``, with the component's id when the
+    train has several ports of that role, as the node's name has).
+
+    >>> labels = port_labels(None, None, [Node("motor", "motor"), Node("body", "motor"),
+    ...                                   Node("generator", "generator 6")])
+    >>> sorted(labels.values())
+    ['input', 'output 6']
+    """
+    nodes = [n for n in nodes if n.kind in ROLES]
+    named: dict[Node, str] = {}
+    if model is not None and nodes:
+        for port in model.ports:
+            if port.role in ("input", "output") and port.name:
+                named[port_node(result, port.component, port.role)] = str(port.name)
+    return {n: named.get(n) or _role_text(n) for n in nodes}
+
+
+def _role_text(node: Node) -> str:
+    """``motor`` -> ``input``, ``generator 6`` -> ``output 6``; another name as it is."""
+    if node.name == node.kind or node.name.startswith(node.kind + " "):
+        return ROLES[node.kind] + node.name[len(node.kind):]
+    return node.name
 
 
 def loop_edges(flows: tuple[Flow, ...] | list[Flow], tolerance: float = 1e-9) -> frozenset:
