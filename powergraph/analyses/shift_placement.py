@@ -32,7 +32,6 @@ from typing import Any, Mapping, Sequence
 
 from powergraph.display import Displayed
 from powergraph.errors import PowerGraphError, UsageError
-from powergraph.format import format_ratio
 from powergraph.kinematics import degrees_of_freedom, solve_speeds
 from powergraph.model.spec import Model
 from powergraph.records import record
