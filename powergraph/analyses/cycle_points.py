@@ -1,10 +1,15 @@
 """Operating points of a duty cycle read from CSV (docs/hybrid.md, ``powergraph cycle``).
 
-One row per operating point. Columns ``PORT.speed``, ``PORT.power`` or ``PORT.torque``
-(PORT a port's ``name`` or its component id) with the unit in brackets
-(``engine.speed [rpm]``; without one, SI), optional ``duration [s]`` or ``time [s]``
-(sample instants: each row lasts until the next, the last as long as the one before) and
-an optional ``mode``.
+One row per operating point: ``PORT.speed``, ``PORT.power`` or ``PORT.torque`` columns
+(PORT a port's ``name`` or component id; the unit in brackets, SI without one), optional
+``duration [s]`` or ``time [s]`` (each row lasts until the next, the last as long as the
+one before) and ``mode`` (docs/hybrid.md lists what is refused).
+
+The header is checked whole before a row is read, each unit once
+(:func:`~powergraph.model.units.unit_factor`). The rows are streamed into one float array
+per column, :data:`CHUNK` rows at a time; the first problem is an error naming the row
+(the file's line) and the column. A file is read by
+:func:`~powergraph.model.input_files.read_table_text` (size limit, UTF-8).
 
 Examples
 --------
@@ -13,81 +18,190 @@ Examples
 >>> m = load_model("models/planetary_2kh_carrier_to_ring.yaml")
 >>> pts = read_points(io.StringIO("carrier.speed [rpm],carrier.power [kW],duration [s]\\n"
 ...                               "1000,1,2\\n2000,2,3\\n"), m)
->>> pts.columns[0], pts.values[0].tolist(), pts.durations.tolist()
-(('ports.0.speed', 0, 'speed'), [104.71975511965977, 209.43951023931953], [2.0, 3.0])
+>>> pts.columns[0], pts.values[0].tolist(), pts.durations.tolist(), pts.lines.tolist()
+(('ports.0.speed', 0, 'speed'), [104.71975511965977, 209.43951023931953], [2.0, 3.0], [2, 3])
+>>> read_points(io.StringIO("carrier.speed [rpm],carrier.speed [rad/s]\\n1,2\\n"), m)
+Traceback (most recent call last):
+...
+powergraph.errors.UsageError: points: column 'carrier.speed [rad/s]': the same quantity \
+as column 'carrier.speed [rpm]' (ports[0] speed); one column per quantity
 """
 from __future__ import annotations
 
 import csv
 import io
+import itertools
+import os
 import re
-from typing import IO, Any
+from typing import IO, Iterator, NamedTuple
 
 import numpy as np
 
 from powergraph.errors import ModelError, UsageError
+from powergraph.model.input_files import read_table_text
 from powergraph.model.spec import Model
-from powergraph.model.units import parse_quantity
+from powergraph.model.units import SI_UNITS, unit_factor
+from powergraph.model.yaml_loader import brief
 from powergraph.records import record
 
 _HEADER = re.compile(r"^\s*(?P<port>.+?)\.(?P<what>speed|power|torque)\s*"
                      r"(\[(?P<unit>[^\]]*)\])?\s*$")
 _TIME = re.compile(r"^\s*(?P<what>duration|time)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
+#: Units of a ``duration`` or ``time`` column, in seconds.
+TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
+#: Rows converted at a time: the most rows held as text at once.
+CHUNK = 8192
+
+
+class Column(NamedTuple):
+    """A column of numbers: its place in the row, its header, its ``ports.<i>.<kind>``
+    path (``duration`` or ``time``, port -1, otherwise) and its factor to SI."""
+
+    position: int
+    name: str
+    path: str
+    port: int
+    kind: str
+    scale: float
+
+
+class Layout(NamedTuple):
+    """What the header says: the port columns, the duration or time column, the mode
+    column's place and the number of cells of a row."""
+
+    ports: tuple[Column, ...]
+    time: Column | None
+    mode: int | None
+    width: int
 
 
 @record
 class Points:
     """The operating points: ``columns`` ``(PATH, port index, kind)`` with their SI
-    ``values`` (one array per column), each row's duration (s) and mode (or None)."""
+    ``values`` (one float array per column), each row's duration (s) and file line, and
+    the modes as ``mode_codes`` (one per row, or None without a ``mode`` column) into
+    ``mode_names``."""
 
     columns: tuple[tuple[str, int, str], ...]
     values: tuple[np.ndarray, ...]
     durations: np.ndarray
-    modes: tuple[str | None, ...]
-    source: str
+    lines: np.ndarray
+    source: str = "points"
+    mode_names: tuple[str, ...] = ()
+    mode_codes: np.ndarray | None = None
+    #: The header of the ``duration`` or ``time`` column, if any.
+    duration_column: str | None = None
 
     def __len__(self) -> int:
         return len(self.durations)
 
+    def mode(self, row: int) -> str | None:
+        """The mode of one row (None without a mode)."""
+        return None if self.mode_codes is None else self.mode_names[self.mode_codes[row]]
 
-def read_points(handle: IO[str] | str, model: Model, source: str = "points") -> Points:
-    """Read the operating points of ``model`` from a CSV file or handle; every cell is
-    checked (``FILE: row 3, engine.speed [rpm]: ...``)."""
-    if isinstance(handle, str):
-        source = handle
-        try:
-            with open(handle, newline="", encoding="utf-8") as f:
-                text = f.read()
-        except OSError as error:
-            raise UsageError(f"{handle}: cannot read the points ({error.strerror})") from None
-        handle = io.StringIO(text)
-    rows = [row for row in csv.reader(handle) if any(cell.strip() for cell in row)]
-    if len(rows) < 2:
+    @property
+    def modes(self) -> tuple[str | None, ...]:
+        """Every row's mode (a tuple as long as the points: prefer :meth:`mode`)."""
+        if self.mode_codes is None:
+            return (None,) * len(self)
+        return tuple(self.mode_names[c] for c in self.mode_codes.tolist())
+
+
+def read_points(handle: IO[str] | str | os.PathLike, model: Model,
+                source: str = "points") -> Points:
+    """Read the operating points of ``model`` from a CSV file (path) or a text handle.
+
+    Raises
+    ------
+    UsageError
+        One line naming the file, the column and, for a cell, the row (the file's line):
+        ``points.csv: row 7, column 'engine.speed [rpm]': not a number: 'fast'``.
+    """
+    if isinstance(handle, (str, os.PathLike)):
+        source = str(handle)
+        handle = _lines(read_table_text(handle, "the points"))
+    reader = csv.reader(handle, strict=True)
+    try:
+        header = next((row for row in reader if "".join(row).strip()), None)
+    except csv.Error as error:
+        raise UsageError(f"{source}: row {reader.line_num}: not CSV ({error})") from None
+    if header is None:
         raise UsageError(f"{source}: needs a header and at least one row")
-    header, body = rows[0], rows[1:]
-    ports = _port_index(model)
-    columns, values, time_col, mode_col = [], [], None, None
-    for j, name in enumerate(header):
-        if name.strip() == "mode":
-            mode_col = j
-            continue
-        timed = _TIME.match(name)
-        if timed:
-            time_col = (j, timed["what"], timed["unit"])
-            continue
-        m = _HEADER.match(name)
-        if not m or m["port"].strip() not in ports:
-            raise UsageError(f"{source}: column {name!r}: expected PORT.speed, PORT.power "
-                             f"or PORT.torque with PORT one of {', '.join(sorted(ports))}, "
-                             "duration [s], time [s] or mode")
-        index = ports[m["port"].strip()]
-        columns.append((f"ports.{index}.{m['what']}", index, m["what"]))
-        values.append(_column(body, j, name, m["what"], m["unit"], source))
-    durations = _durations(body, time_col, header, source)
-    modes = tuple(row[mode_col].strip() if mode_col is not None and mode_col < len(row)
-                  else None for row in body)
-    return Points(columns=tuple(columns), values=tuple(values), durations=durations,
-                  modes=modes, source=source)
+    header[0] = header[0].removeprefix("\ufeff")
+    table = _Table(layout(header, model, source), model, source)
+    table.read(reader)
+    return table.points()
+
+
+def _lines(text: str, size: int = 1 << 16) -> Iterator[str]:
+    """The lines of ``text``, each ending in ``\\n`` (LF, CR LF and a lone CR, as old Mac
+    spreadsheets write, are line ends), read from pieces of about ``size`` characters
+    (each a :class:`io.StringIO`: no copy of the whole)."""
+    pieces = (text[start:end] for start, end in _bounds(text, size))
+    return itertools.chain.from_iterable(io.StringIO(p, newline=None) for p in pieces)
+
+
+def _bounds(text: str, size: int) -> Iterator[tuple[int, int]]:
+    """Pieces of ``text`` ending after a line end (not between the CR and LF of one)."""
+    start, length = 0, len(text)
+    while start < length:
+        end = text.find("\n", start + size)
+        end = (end if end >= 0 else text.find("\r", start + size)) + 1 or length
+        yield start, end
+        start = end
+
+
+def layout(header: list[str], model: Model, source: str) -> Layout:
+    """Check a header against ``model``: every column known, each quantity once, each
+    unit of its column's kind, a mode column when (and only when) the model has modes."""
+    ports, found, seen = _port_index(model), [], {}
+    time = mode = None
+    for j, name in enumerate(cell.strip() for cell in header):
+        where = f"{source}: column {brief(name)}"
+        timed, match = _TIME.match(name), _HEADER.match(name)
+        if name == "mode":
+            if mode is not None or not model.modes:
+                raise UsageError(f"{where}: " + ("a second mode column; a row has one mode"
+                                 if mode is not None else f"the model {model.name!r} has "
+                                 "no modes (no modes: table, docs/modes.md)"))
+            mode = j
+        elif timed:
+            if time is not None:
+                raise UsageError(f"{where}: " + _clash(time.name, time.path == timed["what"],
+                                                       "a row's duration or its time"))
+            time = Column(j, name, timed["what"], -1, "time", _time_scale(timed["unit"], where))
+        elif match and match["port"].strip() in ports:
+            found.append(_port_column(j, name, match, ports, seen, where))
+        else:
+            raise UsageError(f"{where}: expected PORT.speed, PORT.power or PORT.torque "
+                             f"with PORT one of {', '.join(sorted(ports))}, duration [s], "
+                             "time [s] or mode")
+    if not found:
+        raise UsageError(f"{source}: no PORT.speed, PORT.power or PORT.torque column")
+    if model.modes and mode is None:
+        raise UsageError(f"{source}: no mode column, but the model has modes "
+                         f"{', '.join(model.modes)}: a 'mode' column names each row's")
+    return Layout(tuple(found), time, mode, len(header))
+
+
+def _port_column(j: int, name: str, match: re.Match, ports: dict[str, int],
+                 seen: dict[tuple[int, str], Column], where: str) -> Column:
+    """The column of a port's speed, power or torque; ``seen`` by (port, speed or load)."""
+    index, kind = ports[match["port"].strip()], match["what"]
+    key = (index, "speed" if kind == "speed" else "load")
+    if key in seen:
+        raise UsageError(f"{where}: " + _clash(seen[key].name, seen[key].kind == kind,
+                                               "a port's load is its power or its torque",
+                                               f" (ports[{index}] {kind})"))
+    seen[key] = Column(j, name, f"ports.{index}.{kind}", index, kind,
+                       _scale(match["unit"], kind, where))
+    return seen[key]
+
+
+def _clash(first: str, same: bool, either: str, what: str = "") -> str:
+    if same:
+        return f"the same quantity as column {brief(first)}{what}; one column per quantity"
+    return f"conflicts with column {brief(first)}: {either}, not both"
 
 
 def _port_index(model: Model) -> dict[str, int]:
@@ -96,59 +210,192 @@ def _port_index(model: Model) -> dict[str, int]:
     return out
 
 
-def _column(body: list, j: int, name: str, kind: str, unit: str | None,
-            source: str) -> np.ndarray:
-    """Column ``j`` in SI: plain numbers read at once and scaled by the header's unit;
-    anything else (an empty cell, a unit in a cell, a value out of range) read cell by cell,
-    so that the message names its row."""
+def _scale(unit: str | None, kind: str, where: str) -> float:
+    """The SI value of one ``unit`` of ``kind`` (1 without a unit)."""
+    if unit is None or not unit.strip():
+        return 1.0
     try:
-        numbers = np.array([row[j] for row in body], dtype=float)
-    except (ValueError, IndexError):
-        numbers = None
-    if numbers is not None and np.isfinite(numbers).all():
-        scale = _cell(["1"], 0, name, kind, unit, source, 2) if unit else 1.0
-        if unit is None or scale != 0.0:
-            return numbers * scale
-    return np.array([_cell(row, j, name, kind, unit, source, r)
-                     for r, row in enumerate(body, start=2)])
-
-
-def _cell(row: list, j: int, name: str, kind: str, unit: str | None, source: str,
-          number: int) -> float:
-    text = row[j].strip() if j < len(row) else ""
-    where = f"{source}: row {number}, {name.strip()}"
-    if not text:
-        raise UsageError(f"{where}: empty cell")
-    try:
-        return parse_quantity(f"{text} {unit}" if unit else float(text), kind, where)
-    except ValueError:
-        raise UsageError(f"{where}: not a number: {text!r}") from None
+        return unit_factor(unit, kind, where)
     except ModelError as error:
-        raise UsageError(f"{where}: {error.message}") from None
+        raise UsageError(error.message, error.path) from None
 
 
-def _durations(body: list, time_col, header: list, source: str) -> np.ndarray:
-    if time_col is None:
-        return np.ones(len(body))
-    j, what, unit = time_col
-    scale = {None: 1.0, "": 1.0, "s": 1.0, "min": 60.0, "h": 3600.0}.get(
-        unit.strip() if unit else unit)
-    if scale is None:
-        raise UsageError(f"{source}: column {header[j]!r}: unit must be s, min or h")
+def _time_scale(unit: str | None, where: str) -> float:
+    if unit is None or not unit.strip():
+        return 1.0
+    if unit.strip() not in TIME_UNITS:
+        raise UsageError(f"{where}: {brief(unit.strip())} is not a unit of time: a duration or "
+                         f"a time is written in {', '.join(TIME_UNITS)}")
+    return TIME_UNITS[unit.strip()]
+
+
+class _Table:
+    """The columns as read: float arrays per column (one per chunk), lines, mode codes."""
+
+    def __init__(self, layout: Layout, model: Model, source: str) -> None:
+        self.layout, self.modes, self.source = layout, model.modes, source
+        self.numbers = layout.ports + ((layout.time,) if layout.time else ())
+        self.parts: list[list[np.ndarray]] = [[] for _ in self.numbers]
+        self.lines: list[np.ndarray] = []
+        self.mode_names: list[str] = []
+        self.mode_index: dict[str, int] = {}
+        self.codes: list[np.ndarray] = []
+
+    def read(self, reader) -> None:
+        """Read every row, :data:`CHUNK` at a time."""
+        while True:
+            before = reader.line_num
+            try:
+                rows = list(itertools.islice(reader, CHUNK))
+            except csv.Error as error:
+                raise UsageError(f"{self.source}: row {reader.line_num}: not CSV ({error})") \
+                    from None
+            if not rows:
+                return
+            starts = _starts(rows, before, reader.line_num)
+            if set(map(len, rows)) != {self.layout.width}:
+                rows, starts = self._full(rows, starts)
+            if rows:
+                self.add(rows, starts)
+
+    def _full(self, rows: list[list[str]], starts) -> tuple[list[list[str]], list[int]]:
+        """The rows without the blank lines; a row of another width is an error."""
+        kept = [k for k, row in enumerate(rows) if "".join(row).strip()]
+        for k in kept:
+            if len(rows[k]) != self.layout.width:
+                raise UsageError(f"{self.source}: row {starts[k]}: {len(rows[k])} cells, but "
+                                 f"the header has {self.layout.width} columns")
+        return [rows[k] for k in kept], [int(starts[k]) for k in kept]
+
+    def add(self, rows: list[list[str]], starts: list[int]) -> None:
+        """Convert a chunk of rows; the first problem (by row, then column) is an error."""
+        flat, width = list(itertools.chain.from_iterable(rows)), self.layout.width
+        cells = [flat[j::width] for j in range(width)]
+        converted = [_numbers(cells[c.position], c) for c in self.numbers]
+        problems = [p for _, p in converted if p is not None]
+        if any(p[2] == "empty cell" for p in problems):
+            full, full_starts = self._full(rows, starts)
+            if len(full) < len(rows):   # blank rows (",,,"): skipped
+                return self.add(full, full_starts) if full else None
+        if self.layout.mode is not None:
+            problems.append(self._codes(cells[self.layout.mode]))
+        problems = [p for p in problems if p is not None]
+        if problems:
+            k, name, message = min(problems, key=lambda p: p[0])
+            raise UsageError(f"{self.source}: row {starts[k]}, column {brief(name)}: {message}")
+        for part, (values, _) in zip(self.parts, converted):
+            part.append(values)
+        self.lines.append(np.array(starts, dtype=np.int64))
+
+    def _codes(self, cells: list[str]) -> tuple[int, str, str] | None:
+        """Append the chunk's mode codes; an unknown mode is a problem."""
+        for text in sorted(set(cells) - self.mode_index.keys(), key=cells.index):
+            name = text.strip()
+            if name not in self.modes:
+                return (cells.index(text), "mode", (f"unknown mode {brief(name)}" if name else
+                        "empty cell") + f" (the model's modes: {', '.join(self.modes)})")
+            if name not in self.mode_names:
+                self.mode_names.append(name)
+            self.mode_index[text] = self.mode_names.index(name)
+        self.codes.append(np.fromiter(map(self.mode_index.__getitem__, cells),
+                                      dtype=np.uint32, count=len(cells)))
+        return None
+
+    def points(self) -> Points:
+        if not self.lines:
+            raise UsageError(f"{self.source}: needs a header and at least one row")
+        lines = np.concatenate(self.lines)
+        values = [np.concatenate(part) for part in self.parts]
+        time = self.layout.time
+        durations = (_durations(values.pop(), time, lines, self.source) if time
+                     else np.ones(len(lines)))
+        return Points(columns=tuple((c.path, c.port, c.kind) for c in self.layout.ports),
+                      values=tuple(values), durations=durations, lines=lines,
+                      source=self.source, mode_names=tuple(self.mode_names),
+                      mode_codes=(None if self.layout.mode is None else
+                                  np.concatenate(self.codes)),
+                      duration_column=time.name if time else None)
+
+
+def _numbers(cells: list[str], column: Column):
+    """``(SI values, None)`` of a column's cells, or ``(None, (k, name, problem))`` for
+    its first bad cell ``k``."""
     try:
-        t = np.array([float(row[j]) for row in body]) * scale
-    except (ValueError, IndexError):
-        raise UsageError(f"{source}: column {header[j]!r}: every row needs a number") from None
-    if what == "time":
-        if len(t) < 2 or np.any(np.diff(t) <= 0):
-            raise UsageError(f"{source}: time [s] must increase, over two rows at least")
-        step = np.diff(t)
-        t = np.append(step, step[-1])
-    if np.any(t < 0) or not np.all(np.isfinite(t)):
-        raise UsageError(f"{source}: a duration must be a finite number >= 0")
+        raw = np.array(cells, dtype=float)
+    except ValueError:
+        k = next((k for k, text in enumerate(cells) if not _is_number(text)), 0)
+        text = cells[k].strip()
+        return None, (k, column.name, f"not a number: {brief(text)}" if text else "empty cell")
+    with np.errstate(over="ignore", invalid="ignore"):
+        values = raw * column.scale
+    bad = ~np.isfinite(values)
+    if not bad.any():
+        return values, None
+    k = int(np.argmax(bad))
+    text = cells[k].strip()
+    if not np.isfinite(raw[k]):
+        return None, (k, column.name, f"not a finite number: {brief(text)}")
+    si = "s" if column.kind == "time" else SI_UNITS[column.kind]
+    return None, (k, column.name, f"{brief(text)} overflows once in {si} (beyond the "
+                  f"largest float, {np.finfo(float).max:.3g})")
+
+
+def _starts(rows: list[list[str]], before: int, after: int) -> np.ndarray:
+    """The first line of each row read from line ``before + 1`` to ``after``: a row takes
+    one line and one more per line end in its quoted cells."""
+    if after - before == len(rows):
+        return np.arange(before + 1, after + 1)
+    taken = [1 + sum(cell.count("\n") for cell in row) for row in rows]
+    return before + 1 + np.concatenate([[0], np.cumsum(taken[:-1], dtype=np.int64)])
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+def _durations(t: np.ndarray, column: Column, lines: np.ndarray, source: str) -> np.ndarray:
+    """Each row's duration (s) from a ``duration`` or ``time`` column."""
+    def refuse(k: int, message: str) -> UsageError:
+        return UsageError(f"{source}: row {lines[k]}, column {brief(column.name)}: {message}")
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        if column.path == "time":
+            if len(t) < 2:
+                raise UsageError(f"{source}: column {brief(column.name)}: sample times need two "
+                                 "rows at least (each row lasts until the next)")
+            step = np.diff(t)
+            if not np.isfinite(step).all():
+                k = int(np.argmin(np.isfinite(step))) + 1
+                raise refuse(k, "the step from the row before overflows")
+            if (step <= 0).any():
+                k = int(np.argmax(step <= 0)) + 1
+                raise refuse(k, f"the time does not increase ({t[k - 1]:g} s, then "
+                             f"{t[k]:g} s)")
+            t = np.append(step, step[-1])
+        elif (t < 0).any():
+            k = int(np.argmax(t < 0))
+            raise refuse(k, f"a duration must be >= 0, got {t[k]:g} s")
+        if not np.isfinite(t.sum()):
+            raise UsageError(f"{source}: column {brief(column.name)}: the durations add up to "
+                             "more than the largest float")
     return t
 
 
-def as_dict(points: Points, row: int) -> dict[str, Any]:
+def check_modes(points: Points, model: Model) -> None:
+    """Refuse points whose modes ``model`` does not have (a :class:`Points` made for
+    another model), naming the first row with one."""
+    for code, name in enumerate(points.mode_names):
+        if name is not None and name not in model.modes:
+            k = int(np.argmax(points.mode_codes == code))
+            raise UsageError(f"{points.source}: row {points.lines[k]}, column 'mode': "
+                             f"unknown mode {brief(name)} (the model's modes: "
+                             f"{', '.join(model.modes) or 'none'})")
+
+
+def as_dict(points: Points, row: int) -> dict[str, float]:
     """``{PATH: SI value}`` of one row."""
     return {path: float(v[row]) for (path, _, _), v in zip(points.columns, points.values)}

@@ -1,10 +1,12 @@
-"""``powergraph cycle MODEL --points FILE.csv [--json] [-o OUT.csv] [--plot FILE]``.
+"""``powergraph cycle MODEL --points FILE.csv [--keep-going] [--json] [-o OUT.csv]
+[--plot FILE]``.
 
 Evaluates the train at every operating point of a duty cycle (docs/hybrid.md): columns
 ``PORT.speed``, ``PORT.power``, ``PORT.torque`` with units in the header, optional
 ``duration [s]`` or ``time [s]`` and ``mode``. Prints the totals (energy in, out and lost
 per element, cycle efficiency, time per mode, rows that lock); ``-o`` writes the per-row
-results as CSV.
+results as CSV. A row that cannot be solved is an error (exit 2) unless ``--keep-going``
+leaves it out of the totals.
 """
 from __future__ import annotations
 
@@ -20,10 +22,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "cycle", help="a duty cycle: operating points from CSV, energies over the cycle",
         description="Evaluate the train at every row of a CSV of operating points "
                     "(PORT.speed [rpm], PORT.power [kW], PORT.torque [N*m], duration [s] "
-                    "or time [s], mode) and total the energies over the cycle.")
+                    "or time [s], mode) and total the energies over the cycle. A row that "
+                    "cannot be solved is an error (exit 2) unless --keep-going.")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("--points", required=True, metavar="POINTS.csv",
                         help="the operating points, one per row")
+    parser.add_argument("--keep-going", action="store_true",
+                        help="leave the rows that cannot be solved out of the totals (the "
+                             "report counts them) instead of stopping at the first")
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     parser.add_argument("-o", "--output", metavar="FILE.csv",
                         help="write the per-row results as CSV")
@@ -40,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     if args.output:
         check_output_file(args.output, "-o", (".csv",))
     model = load(args.model)
-    result = cycle(model, args.points)
+    result = cycle(model, args.points, keep_going=args.keep_going)
     if args.output:
         write_atomically(args.output, lambda tmp: result.to_csv(tmp))
     if figure is not None:
