@@ -40,6 +40,7 @@ import numpy as np
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.input_files import read_table_text
 from powergraph.model.spec import Model
+from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
 from powergraph.model.units import SI_UNITS, unit_factor
 from powergraph.model.yaml_loader import brief
 from powergraph.records import record
@@ -49,6 +50,8 @@ _HEADER = re.compile(r"^\s*(?P<port>.+?)\.(?P<what>speed|power|torque)\s*"
 _TIME = re.compile(r"^\s*(?P<what>duration|time)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
 #: Units of a ``duration`` or ``time`` column, in seconds.
 TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
+#: Largest port values (SI) a row may give, as in model files.
+PORT_LIMITS = {"speed": MAX_SPEED, "power": MAX_POWER, "torque": MAX_TORQUE}
 #: Rows converted at a time: the most rows held as text at once.
 CHUNK = 8192
 
@@ -328,7 +331,8 @@ def _numbers(cells: list[str], column: Column):
         return None, (k, column.name, f"not a number: {brief(text)}" if text else "empty cell")
     with np.errstate(over="ignore", invalid="ignore"):
         values = raw * column.scale
-    bad = ~np.isfinite(values)
+    limit = PORT_LIMITS.get(column.kind, np.inf)
+    bad = ~(np.abs(values) <= limit)          # NaN and inf included
     if not bad.any():
         return values, None
     k = int(np.argmax(bad))
@@ -336,6 +340,9 @@ def _numbers(cells: list[str], column: Column):
     if not np.isfinite(raw[k]):
         return None, (k, column.name, f"not a finite number: {brief(text)}")
     si = "s" if column.kind == "time" else SI_UNITS[column.kind]
+    if np.isfinite(values[k]):
+        return None, (k, column.name, f"{brief(text)} is out of range: a port's "
+                      f"{column.kind} is at most {limit:g} {si} either way, as in model files")
     return None, (k, column.name, f"{brief(text)} overflows once in {si} (beyond the "
                   f"largest float, {np.finfo(float).max:.3g})")
 

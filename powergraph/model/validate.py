@@ -17,11 +17,17 @@ from typing import Any, Mapping
 from powergraph.errors import Caveat, ModelError
 from powergraph.model.buses import buses_of, machine_fields
 from powergraph.model.conform import check_document, conform
+from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
 from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
 from powergraph.model.yaml_loader import brief, gc_paused
 
 _EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
+
+
+#: The largest port values (SI) and their units, as the schema bounds them in files.
+PORT_RANGES = {"speed": (MAX_SPEED, "rad/s"), "power": (MAX_POWER, "W"),
+               "torque": (MAX_TORQUE, "N*m")}
 
 
 def check_efficiency(value: Any, path: str) -> float:
@@ -32,6 +38,35 @@ def check_efficiency(value: Any, path: str) -> float:
     """
     conform(value, _EFFICIENCY, path)
     return float(value)
+
+
+def check_port_ranges(model: Model, speeds: Mapping[str, float] | None = None) -> None:
+    """Refuse port values a model file could not hold (a speed beyond ``MAX_SPEED``, a
+    power or torque beyond ``MAX_POWER``/``MAX_TORQUE``, SI, or not finite): a model
+    changed in Python (``Model.with_port``) or a duty cycle's row is held to the same
+    ranges as the file, so no solve runs on numbers that overflow on the way.
+
+    >>> from powergraph.model import load_model
+    >>> m = load_model("models/planetary_2kh_carrier_to_ring.yaml")
+    >>> check_port_ranges(m.with_port(0, power=1e308))
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.ModelError: ports[0].power: 1e+308 is out of range: at most 1e+12 W \
+either way
+    """
+    for port in model.ports:
+        for kind, value in (("speed", port.speed), ("power", port.power),
+                            ("torque", port.torque)):
+            _in_range(value, kind, f"{port.path}.{kind}")
+    for component, value in (speeds or {}).items():
+        _in_range(value, "speed", f"speed of {component}")
+
+
+def _in_range(value: float | None, kind: str, path: str) -> None:
+    limit, unit = PORT_RANGES[kind]
+    if value is not None and not abs(value) <= limit:
+        raise ModelError(f"{value:g} is out of range: at most {limit:g} {unit} either way",
+                         path)
 
 
 def model_from_dict(data: Any, source: str | None = None) -> Model:

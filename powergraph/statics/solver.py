@@ -14,6 +14,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
 from powergraph.model.spec import Model
+from powergraph.model.validate import check_port_ranges
 from powergraph.statics.directions import (
     factors_of,
     force_scales,
@@ -67,6 +68,8 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     >>> round(r.efficiency, 12), round(r.ratio, 12), round(r.total_loss, 9)
     (0.98, -2.0, 20.0)
     """
+    if extra_torques is None:
+        check_port_ranges(model, speeds)
     if model.buses and extra_torques is None:
         from powergraph.statics.machines import solve_machines
 

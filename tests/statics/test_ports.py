@@ -160,3 +160,21 @@ def test_model_warnings_come_first_in_the_result() -> None:
 
     result = pg.solve(dataclasses.replace(model, warnings=(caveat,)))
     assert result.warnings[0] == caveat and len(result.warnings) == 3
+
+
+@pytest.mark.parametrize("changes, where", [
+    ({"speed": 1.0, "power": 1e308}, "ports[0].power"),   # once gave η = 1, no loss
+    ({"speed": 1e7}, "ports[0].speed"),                   # beyond 1e6 rad/s
+    ({"speed": 1.0, "power": None, "torque": math.inf}, "ports[0].torque"),
+])
+def test_port_values_beyond_a_files_ranges_are_refused_by_solve(changes, where) -> None:
+    """A model changed in Python is held to the ranges of the file format (speed 1e6
+    rad/s, power 1e12 W, torque 1e12 N·m): 1e308 W at 1 rad/s is a torque of 1e308 N·m,
+    whose products overflow and once came back as a lossless train."""
+    model = pg.load_model("models/planetary_2kh_carrier_to_ring.yaml")
+    with pytest.raises(pg.ModelError, match="out of range") as info:
+        pg.solve(model.with_port(0, **changes))
+    assert info.value.path == where
+    inside = pg.solve(model.with_port(0, speed=1.0, power=1e12))   # the edge is allowed
+    assert_conservation(inside)
+    assert inside.efficiency == pytest.approx(pg.solve(model).efficiency, rel=1e-12)
