@@ -4,7 +4,8 @@ One linear row per mesh ``(w_a - w_c) - i (w_b - w_c) = s`` (``s`` = 0, or a sli
 sensitivity analyses), one per coupling ``w_a - w_b = 0``, and ``w_frame = 0``.
 DOF = bodies - rank (decided structurally, confirmed on the scaled system, see
 :mod:`powergraph.linalg`). A rank defect or an inconsistency is a
-KinematicsError that says what is wrong, never a NaN.
+KinematicsError that says what is wrong, never a NaN: given speeds that contradict each
+other name the links whose rows cannot all hold, and what those rows require of them.
 """
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ import numpy as np
 
 from powergraph.errors import KinematicsError
 from powergraph.kinematics.elements import Element, elements_of
-from powergraph.kinematics.system import system_of
+from powergraph.kinematics.system import CONFLICT_RTOL, conflict, element_words, system_of
 from powergraph.linalg import (
     COND_LIMIT,
     PLAIN_UP_TO,
@@ -146,7 +147,7 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
         if index not in row_of:
             raise KinematicsError(f"links[{index}] is not a mesh or coupling: it has no slip")
         rhs[row_of[index]] = value
-    solution = _solve_reduced(model, rows, rhs, given)
+    solution = _solve_reduced(model, rows, rhs, given, elements)
     inputs, outputs = model.inputs, model.outputs
     ids = [b.id for b in model.bodies]
     return Kinematics(
@@ -172,7 +173,7 @@ def _structure(model: Model, elements: tuple[Element, ...]) -> tuple[Triplets, i
 
 
 def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
-                   given: Mapping[str, float]) -> np.ndarray:
+                   given: Mapping[str, float], elements: tuple[Element, ...]) -> np.ndarray:
     """Substitute the frame and the given speeds, then solve for the other bodies: the
     rows matched to the unknowns (structurally) solved scaled, every row checked."""
     column = {body.id: j for j, body in enumerate(model.bodies)}
@@ -202,9 +203,8 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
     residual = rows.dot(solution) - rhs
     scale = max(1.0, float(np.max(np.abs(solution))))
     if residual.size and np.max(np.abs(residual)) > 1e-9 * scale:
-        raise KinematicsError("the given speeds contradict each other: "
-                              + ", ".join(f"{c} = {v:g} rad/s" for c, v in given.items())
-                              + " cannot all hold")
+        raise KinematicsError(contradiction_message(model, elements, rows, rhs, known,
+                                                    given, reduced, square))
     if not determined:
         raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
     return solution
@@ -265,16 +265,16 @@ def _reduced(model: Model, rows: Triplets, unknown: np.ndarray):
 def _solve_unknown(reduced: Triplets, rhs: np.ndarray,
                    square: tuple[np.ndarray, np.ndarray, Triplets]) -> tuple[np.ndarray, bool]:
     """The unknown speeds and whether they are determined: the rows matched to them
-    (``square``: the rows, their columns, that part) solved scaled when the structure
-    allows (the usual case); else dense least squares and the rank of the equilibrated
-    matrix."""
+    (``square``: the rows, their columns, that part) solved scaled when they are regular
+    (the usual case; unknowns left unmatched are 0 and undetermined, and since the
+    matched rows then span all the rows, the others hold iff the speeds are consistent);
+    else dense least squares and the rank of the equilibrated matrix."""
     rows, columns, part = square
-    if rows.size == reduced.shape[1]:
-        solved = solve_square(part, rhs[rows])
-        if solved.regular:
-            values = np.empty(reduced.shape[1])
-            values[columns] = solved.x
-            return values, True
+    solved = solve_square(part, rhs[rows])
+    if solved.regular:
+        values = np.zeros(reduced.shape[1])
+        values[columns] = solved.x
+        return values, rows.size == reduced.shape[1]
     matrix = reduced.dense()
     values = np.linalg.lstsq(matrix, rhs, rcond=None)[0]
     return values, svd_rank(reduced) == reduced.shape[1]
@@ -306,3 +306,101 @@ def _underdetermined_message(model: Model, reduced: Triplets, unknown: np.ndarra
     free = [model.bodies[j].id for k, j in enumerate(unknown) if np.any(np.abs(null[:, k]) > 1e-9)]
     return ("the given speeds (" + ", ".join(given) + ") do not fix the motion; "
             "bodies still free to turn: " + ", ".join(free))
+
+
+# --- given speeds the rows cannot meet: which rows, which ports -----------------------------
+#: At most this many links are named in a conflict (then how many there are in all).
+NAMED_LINKS = 8
+#: Model warnings (docs/feasibility.md) that mean a link's row is not the train's.
+WRONG_ROWS = ("ring-without-carrier", "planet-carrier", "ring-not-internal")
+
+
+def contradiction_message(model: Model, elements: tuple[Element, ...], rows: Triplets,
+                          rhs: np.ndarray, known: Mapping[int, float],
+                          given: Mapping[str, float], reduced: Triplets,
+                          square: tuple) -> str:
+    """Why the given speeds (``known``: body column -> rad/s, the frame's 0 included) and
+    the element ``rows`` (slips ``rhs``; ``reduced``, ``square``: the rows on the unknown
+    speeds and their matched part, :func:`_reduced`) cannot all hold: the links of a
+    conflicting set of rows (:func:`conflict`), what together they require of the given
+    speeds, and the model's warnings that explain a wrong row (a ring without carrier...).
+
+    Called only once a solve has failed (its cost is one more sparse factorisation).
+
+    Examples
+    --------
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "p", "components": {0: {"role": "frame"},
+    ...     1: {"teeth": 20}, 2: {"teeth": 40}, 3: {}},
+    ...     "links": [{"type": "mesh", "between": [1, 2]}],
+    ...     "ports": [{"component": 1, "role": "input", "speed": 10},
+    ...               {"component": 2, "role": "output", "speed": 3},
+    ...               {"component": 3, "role": "output"}]})
+    >>> try:
+    ...     solve_speeds(m)
+    ... except KinematicsError as err:
+    ...     print(err)  # doctest: +NORMALIZE_WHITESPACE
+    the given speeds contradict each other: links[0] (mesh 1-2, fixed axes) requires
+    w_1 = -2·w_2 (= -6 rad/s), but ports[0] gives w_1 = 10 rad/s and ports[1] gives
+    w_2 = 3 rad/s
+    """
+    fixed = np.zeros(len(model.bodies))
+    fixed[list(known)] = list(known.values())
+    y = conflict(reduced, rhs - rows.dot(fixed), square)
+    head = "the given speeds contradict each other: "
+    if y is None or not y.any():
+        return head + ", ".join(f"{model.raw_id(c)} = {v:g} rad/s"
+                                for c, v in given.items()) + " cannot all hold"
+    support = np.flatnonzero(y)
+    links = [model.links[elements[k].link] for k in support]
+    named = [element_words(model, elements[k]) for k in support[:NAMED_LINKS]]
+    if support.size > NAMED_LINKS:
+        named[-1] = f"… ({support.size} links in all)"
+    lead = "together " if support.size > 1 else ""
+    want = _requirement(model, rows, rhs, y, known, given, lead)
+    if want is None:
+        slips = ", ".join(f"{link.path} {rhs[k]:.6g} rad/s"
+                          for k, link in zip(support, links) if rhs[k])
+        want = f"{lead}cannot take the slips given ({slips})"
+    text = head + _and(named) + " " + want
+    near = {link.path for link in links} | {f"components.{model.raw_id(x)}"
+                                            for link in links for x in link.between}
+    notes = [str(c) for c in model.warnings if c.code in WRONG_ROWS
+             and (c.path or "").split(".carrier")[0] in near]
+    return text + "".join(f" — warning: {note}" for note in notes[:2])
+
+
+def _requirement(model: Model, rows: Triplets, rhs: np.ndarray, y: np.ndarray,
+                 known: Mapping[int, float], given: Mapping[str, float],
+                 lead: str) -> str | None:
+    """What the rows weighted by ``y`` require of the given speeds (``Σ g_k w_k = y·s``
+    over the given bodies, ``g = y · rows``, ``s`` the slips), and what the ports give;
+    None when no given speed takes part (the slips alone conflict)."""
+    n, terms = len(model.bodies), rows.values * y[rows.rows]
+    g = np.bincount(rows.cols, weights=terms, minlength=n)
+    mass = np.bincount(rows.cols, weights=np.abs(terms), minlength=n)
+    index = {body.id: j for j, body in enumerate(model.bodies)}
+    involved = [(c, index[model.body_of[c]]) for c in given]
+    involved = [(c, j) for c, j in involved if abs(g[j]) > CONFLICT_RTOL * mass[j]]
+    if not involved:
+        return None
+    slip, s = float(y @ rhs), "" if lead else "s"
+    port = {p.component: p.path for p in reversed(model.ports)      # the ports' own speeds
+            if p.speed is not None and p.speed == given.get(p.component)}
+    (first, j0), rest = involved[0], involved[1:]
+    required = (slip - sum(g[j] * known[j] for _, j in rest)) / g[j0]
+    terms = [f"{-g[j] / g[j0]:.6g}·w_{model.raw_id(c)}" for c, j in rest]
+    if slip:
+        terms.append(f"{slip / g[j0]:.6g} rad/s")
+    want = f"{lead}require{s} w_{model.raw_id(first)} = "
+    if terms:
+        want += " + ".join(terms).replace("+ -", "- ") + f" (= {required:.6g} rad/s)"
+    else:
+        want += f"{required + 0.0:.6g} rad/s"
+    gives = [f"{port[c]} gives w_{model.raw_id(c)} = {given[c]:.6g} rad/s" if c in port
+             else f"w_{model.raw_id(c)} = {given[c]:.6g} rad/s is given" for c, _ in involved]
+    return f"{want}, but {_and(gives)}"
+
+
+def _and(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]

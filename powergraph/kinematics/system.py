@@ -14,6 +14,11 @@ last axis runs over the points) or symbols (numpy object arrays of sympy express
 as triplets (the single solve's sparse and small dense systems, the symbolic
 derivation) or as dense stacks ``(points, rows, columns)`` (the batched evaluators: the
 complementarity search, the efficiency grid, the sweep's numeric backend).
+
+When given speeds cannot meet the Willis rows, :func:`conflict` finds an irreducible set
+of rows that cannot all hold (a left null vector of the rows not orthogonal to their
+right-hand side) and :func:`element_words` names their links, for the error message of
+:func:`powergraph.kinematics.speeds.solve_speeds`.
 """
 from __future__ import annotations
 
@@ -22,6 +27,8 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from powergraph.kinematics.elements import ELEMENT_BODIES, Element, element_stencil
+from powergraph.linalg import Triplets, matching, solve_square
+from powergraph.model.spec import Model
 
 
 class TrainSystem:
@@ -136,3 +143,126 @@ def _dense(rows: np.ndarray, cols: np.ndarray, values: np.ndarray,
     for r, c, v in zip(rows.tolist(), cols.tolist(), values):
         out[..., r, c] += v
     return out
+
+
+# --- rows that cannot all hold -----------------------------------------------------------
+#: A row (or port) whose share of a conflict is below this fraction of the largest is none.
+CONFLICT_RTOL = 1e-9
+#: Without regular matched rows, systems up to this many rows are diagnosed densely.
+DENSE_DIAGNOSIS_UP_TO = 400
+
+
+def conflict(reduced: Triplets, b: np.ndarray, square: tuple) -> np.ndarray | None:
+    """Weights ``y`` of the rows of ``reduced · x = b`` with ``y · reduced = 0`` and
+    ``y · b ≠ 0``: the rows with a weight cannot all hold, whatever the unknowns (zero
+    weights are exact zeros). None when no such weights are found.
+
+    With the matched rows (``square``: :func:`matched_square`) regular, a violated unmatched
+    row ``r`` minus its expansion in the matched rows, which is unique: no row of it can
+    be dropped (an irreducible conflict), in the time of one sparse factorisation. Else
+    (redundant loops) the part of ``b`` outside the range of ``reduced`` (least squares),
+    cut down to an irreducible set row by row: small systems only.
+
+    Examples
+    --------
+    >>> t = Triplets.build([0, 1], [0, 0], [1.0, 1.0], (2, 1))   # x = 1 and x = 3
+    >>> conflict(t, np.array([1.0, 3.0]), matched_square(t)).tolist()
+    [-1.0, 1.0]
+    """
+    matched, columns, part = square
+    x = np.zeros(reduced.shape[1])
+    solved = solve_square(part, b[matched]) if matched.size else None
+    if solved is None or solved.regular:
+        if solved is not None:
+            x[columns] = solved.x
+        residual = reduced.dot(x) - b
+        terms = np.maximum(reduced.row_terms(x), np.abs(b))
+        off = np.abs(residual) / np.where(terms > 0, terms, 1.0)
+        off[matched] = 0.0
+        r = int(np.argmax(off)) if off.size else 0
+        if off.size and off[r] > CONFLICT_RTOL:
+            y = np.zeros(reduced.shape[0])
+            y[r] = 1.0
+            if matched.size:
+                a_r = reduced.part(np.array([r]), columns).dense()[0]
+                z = solve_square(Triplets(part.cols, part.rows, part.values, part.shape), a_r)
+                if not z.regular:
+                    return _dense_conflict(reduced, b)
+                y[matched] = -z.x
+            return _significant(reduced, y, r)
+    return _dense_conflict(reduced, b)
+
+
+def matched_square(t: Triplets) -> tuple[np.ndarray, np.ndarray, Triplets]:
+    """``(matched rows, their columns, that square part)`` of ``t``: a maximum matching of
+    rows to columns (:func:`powergraph.linalg.matching`)."""
+    col_of = matching(t)
+    matched = np.flatnonzero(col_of >= 0)
+    return matched, col_of[matched], t.part(matched, col_of[matched])
+
+
+def _significant(reduced: Triplets, y: np.ndarray, r: int) -> np.ndarray:
+    """``y`` without the weights that are round-off: the rows reached from row ``r``
+    through the unknowns they share, a row entering through an unknown only when its
+    term ``y_i a_ij`` there is not round-off beside the largest (each unknown's terms
+    cancel, so a genuine row is never small beside them; a scale-free test, so a train
+    whose speeds span many decades keeps its small rows)."""
+    term = np.abs(y[reduced.rows] * reduced.values)
+    largest = np.zeros(reduced.shape[1])
+    np.maximum.at(largest, reduced.cols, term)
+    strong = term > CONFLICT_RTOL * largest[reduced.cols]
+    by_row: list[list[int]] = [[] for _ in range(reduced.shape[0])]
+    by_col: list[list[int]] = [[] for _ in range(reduced.shape[1])]
+    for row, col, keep in zip(reduced.rows.tolist(), reduced.cols.tolist(), strong.tolist()):
+        by_row[row].append(col)
+        if keep:
+            by_col[col].append(row)
+    reached, seen, queue = {r}, set(), [r]
+    while queue:
+        for col in by_row[queue.pop()]:
+            if col not in seen:
+                seen.add(col)
+                fresh = [row for row in by_col[col] if row not in reached]
+                reached.update(fresh)
+                queue.extend(fresh)
+    out = np.zeros_like(y)
+    out[list(reached)] = y[list(reached)]
+    return out
+
+
+def _dense_conflict(reduced: Triplets, b: np.ndarray) -> np.ndarray | None:
+    """:func:`conflict` by least squares, for a system of a few hundred rows at most."""
+    if reduced.shape[0] > DENSE_DIAGNOSIS_UP_TO:
+        return None
+    matrix = reduced.dense()
+
+    def residual(keep: list[int]) -> np.ndarray:
+        part = matrix[keep]
+        x = np.linalg.lstsq(part, b[keep], rcond=None)[0]
+        terms = np.maximum(np.abs(part * x).max(axis=1, initial=0.0), np.abs(b[keep]))
+        out = b[keep] - part @ x
+        return np.where(np.abs(out) > CONFLICT_RTOL * np.where(terms > 0, terms, 1.0),
+                        out, 0.0)
+
+    keep = [int(k) for k in np.flatnonzero(residual(list(range(matrix.shape[0]))))]
+    if not keep:
+        return None
+    for k in list(keep):                   # drop every row the conflict does without
+        trial = [i for i in keep if i != k]
+        if trial and np.any(residual(trial)):
+            keep = trial
+    y = np.zeros(matrix.shape[0])
+    y[keep] = residual(keep)
+    return y
+
+
+def element_words(model: Model, element: Element) -> str:
+    """``links[3] (mesh s-p, carrier c)``, with the link's name when it has one."""
+    link = model.links[element.link]
+    a, b = (model.raw_id(x) for x in link.between)
+    named = f"{link.name}, " if link.name else ""
+    if element.kind != "mesh":
+        return f"{link.path} ({named}{element.kind} {a}-{b})"
+    where = "fixed axes" if link.carrier == model.frame else \
+        f"carrier {model.raw_id(link.carrier)}"
+    return f"{link.path} ({named}mesh {a}-{b}, {where})"

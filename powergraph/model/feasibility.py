@@ -3,8 +3,9 @@
 A model can be valid and solvable and still describe gears that cannot be put together:
 planets that cannot share the axis of their sun and ring, that cannot be assembled at equal
 spacing, that collide with their neighbours; a ring gear not marked ``internal`` (its
-ratio then has the wrong sign); a planet meshing with and without its carrier; an
-undercut pinion. :func:`feasibility_caveats` finds them; validation adds them to
+ratio then has the wrong sign); a planet meshing with and without its carrier; a ring
+meshing a planet without a carrier (read as a fixed-axis pair); an undercut pinion.
+:func:`feasibility_caveats` finds them; validation adds them to
 ``Model.warnings`` (the answer of a solve stands, the designer should know), ``powergraph
 check`` prints them and ``--strict`` refuses them. The conditions themselves are those of
 :mod:`powergraph.gears.planetary` (one copy, shared with the tooth-number synthesis).
@@ -40,7 +41,7 @@ import numpy as np
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
 from powergraph.model.feasibility_axes import (coaxiality, gear_module, mesh_geometry,
-                                               mesh_centre)
+                                               mesh_centre, rings_without_carrier)
 
 
 class PlanetarySet:
@@ -72,7 +73,9 @@ def feasibility_caveats(model: Any) -> tuple[Caveat, ...]:
     phased = {model.body_of[link.carrier] for link in model.meshes}   # bodies carrying a mesh
     for pset in sets.values():
         caveats += _set_caveats(model, pset, phased)
-    caveats += _planet_carrier(model, sets)
+    carriers = _planet_carrier(model, sets)
+    caveats += carriers
+    caveats += rings_without_carrier(model, {c.path.split(".")[0] for c in carriers})
     caveats += _undercut(model)
     return tuple(caveats)
 
@@ -286,7 +289,7 @@ def _assembly_words(central: list, coefficients: list[int], n: int, phased: bool
     tail = f"{n} planets cannot be assembled at equal spacing"
     if phased:
         bad = [g for g in central if g.teeth % n]
-        return (f"the planets carry another stage, so every copy is identical: "
+        return ("the planets carry another stage, so every copy is identical: "
                 + ", ".join(f"{g.teeth}/{n} = {g.teeth / n:.4g}" for g in bad)
                 + f" is not whole: {tail}")
     if len(central) == 2:

@@ -1,5 +1,6 @@
-"""Coaxiality of a planet's meshes, rings not marked internal, and the geometry a mesh
-gives (module, shifts): part of :mod:`powergraph.model.feasibility` (docs/feasibility.md).
+"""Coaxiality of a planet's meshes, rings not marked internal, rings meshing without a
+carrier, and the geometry a mesh gives (module, shifts): part of
+:mod:`powergraph.model.feasibility` (docs/feasibility.md).
 
 Examples
 --------
@@ -142,3 +143,75 @@ def place(links: list) -> str:
     if index == list(range(index[0], index[-1] + 1)) and len(index) == 2:
         return f"links[{index[0]}..{index[1]}]"
     return f"links[{','.join(map(str, index))}]"
+
+
+def rings_without_carrier(model: Any, told: set[str]) -> list[Caveat]:
+    """Meshes of an internal gear without ``carrier`` (or with the frame as carrier),
+    read as fixed-axis pairs, whose external gear looks like a planet: it is carried by a
+    ``bearing`` on a body other than the frame (``between: [planet, carrier]``, carried
+    member first: that body is the carrier to write) or has ``count`` > 1. Not warned: an
+    external gear borne by the housing (a bearing to the frame's body: its axis is fixed,
+    as in a star set), a single gear with neither sign (a plain internal pair on fixed
+    axes), and the links in ``told`` (paths already warned, e.g. ``planet-carrier``).
+
+    Examples
+    --------
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "p", "components": {0: {"role": "frame"},
+    ...     "p": {"teeth": 20}, "r": {"teeth": 60, "internal": True}, "c": {}},
+    ...     "links": [{"type": "mesh", "between": ["p", "r"]},
+    ...               {"type": "bearing", "between": ["p", "c"]}],
+    ...     "ports": [{"component": "c", "role": "input"},
+    ...               {"component": "r", "role": "output"}]})
+    >>> [(c.path, c.code, c.message[-16:]) for c in rings_without_carrier(m, set())]
+    [('links[0]', 'ring-without-carrier', 'write carrier: c')]
+    """
+    frame, shifts = model.frame_body, {e.index for e in model.shift_elements}
+    housed, carriers, on_frame = set(), {}, {}
+    for link in model.links:
+        if link.type != "bearing" or link.index in shifts:
+            continue
+        carried, carrying = (model.body_of[x] for x in link.between)
+        if frame in (carried, carrying):
+            housed.add(carrying if carried == frame else carried)
+        elif carried != carrying:
+            carriers.setdefault(carried, {}).setdefault(carrying, (link.between[1], link))
+    for link in model.meshes:
+        if link.carrier == model.frame:
+            for body in {model.body_of[x] for x in link.between}:
+                on_frame.setdefault(body, []).append(link.path)
+    out = []
+    for link in model.meshes:
+        gears = [model.components[x] for x in link.between]
+        if link.carrier != model.frame or link.path in told or \
+                not any(g.internal for g in gears):
+            continue
+        ring, pinion = sorted(gears, key=lambda g: not g.internal)
+        body = model.body_of[pinion.id]
+        if body == frame or body in housed:
+            continue
+        found = [c for b, c in carriers.get(body, {}).items() if b != model.body_of[ring.id]]
+        if found or max(model.components[x].count for x in model.body(body).members) > 1:
+            others = [path for path in on_frame[body] if path != link.path]
+            out.append(Caveat(_ring_words(model, ring, pinion, found, others), link.path,
+                              "ring-without-carrier"))
+    return out
+
+
+def _ring_words(model: Any, ring: Any, pinion: Any, carriers: list, others: list) -> str:
+    """The warning: the carrier to write (``carriers``: ``(component, bearing link)``),
+    with the pinion's ``other`` meshes without carrier, or how to say the axis is fixed."""
+    p, r = pinion.raw_id, ring.raw_id
+    text = (f"mesh {p}-{r} has no carrier, so it is a fixed-axis pair (both axes held by "
+            f"the housing), but {r} is internal: a ring nearly always meshes planets, whose "
+            "axes turn with their carrier")
+    if not carriers:
+        frame = model.components[model.frame].raw_id
+        return (f"{text}; write carrier: <the planets' carrier>, or, if {p} turns on a "
+                f"fixed axis, give it a bearing on the housing (type: bearing, between: "
+                f"[{p}, {frame}])")
+    (carrier, bearing), *more = carriers
+    also = f" (or {', '.join(str(model.raw_id(c)) for c, _ in more)})" if more else ""
+    where = f", here and on {', '.join(others)}" if others else ""
+    return (f"{text}; {p} is borne by {model.raw_id(carrier)} ({bearing.path}): write "
+            f"carrier: {model.raw_id(carrier)}{also}{where}")

@@ -203,6 +203,81 @@ def test_a_held_carrier_is_the_frame_for_its_planets() -> None:
     assert codes(doc) == []
 
 
+def without_carriers(doc: dict, *indices: int) -> dict:
+    for index in indices:
+        del doc["links"][index]["carrier"]
+    return doc
+
+
+def bundled(stem: str) -> dict:
+    import yaml
+    return yaml.safe_load(MODELS[[p.stem for p in MODELS].index(stem)].read_text())
+
+
+def test_a_ring_without_carrier_is_warned_with_the_carrier_to_write() -> None:
+    # models/planetary_2kh_sun_to_carrier.yaml without its two carrier keys: both meshes
+    # are fixed-axis pairs; the planet is borne by the carrier (links[3]: [planet, carrier])
+    found = caveats(without_carriers(bundled("planetary_2kh_sun_to_carrier"), 0, 1))
+    assert [(c, p) for c, p, _ in found] == [("ring-without-carrier", "links[1]")]
+    assert found[0][2] == (
+        "mesh planet-ring has no carrier, so it is a fixed-axis pair (both axes held by the "
+        "housing), but ring is internal: a ring nearly always meshes planets, whose axes "
+        "turn with their carrier; planet is borne by carrier (links[3]): write carrier: "
+        "carrier, here and on links[0]")
+
+
+def test_one_carrier_left_out_is_told_once() -> None:
+    # the other mesh keeps carrier: the planet meshes with and without it (planet-carrier),
+    # which already says what to write: no second warning on the ring mesh
+    for index in (0, 1):
+        found = caveats(without_carriers(bundled("planetary_2kh_sun_to_carrier"), index))
+        assert [(c, p) for c, p, _ in found] == [("planet-carrier",
+                                                  f"links[{index}].carrier")]
+
+
+def test_a_ring_without_carrier_meshing_several_planets_and_no_bearing() -> None:
+    # no bearing to guess from; count 3 says planets (or a star set on fixed axes)
+    found = caveats(without_carriers(simple(24, 24, 72), 0, 1))
+    assert [(c, p) for c, p, _ in found] == [("ring-without-carrier", "links[1]")]
+    assert found[0][2].endswith("write carrier: <the planets' carrier>, or, if p turns on "
+                                "a fixed axis, give it a bearing on the housing (type: "
+                                "bearing, between: [p, 0])")
+
+
+def test_a_single_gear_borne_by_a_carrier_is_a_planet() -> None:
+    # one gear (count 1) in a ring, mounted on an eccentric H (a K-H-V stage written
+    # without its carrier): the bearing [p, H] says its axis turns with H
+    doc = {"name": "khv", "components": {0: {"role": "frame"}, "p": {"teeth": 40},
+                                         "r": {"teeth": 45, "internal": True}, "H": {}},
+           "links": [{"type": "mesh", "between": ["r", "p"]},
+                     {"type": "fixed", "between": ["r", 0]},
+                     {"type": "bearing", "between": ["p", "H"]}],
+           "ports": [{"component": "H", "role": "input"}, {"component": "p", "role": "output"}]}
+    found = caveats(doc)
+    assert [(c, p) for c, p, _ in found] == [("ring-without-carrier", "links[0]")]
+    assert found[0][2].startswith("mesh p-r has no carrier")
+    assert found[0][2].endswith("p is borne by H (links[2]): write carrier: H")
+
+
+def test_internal_pairs_on_fixed_axes_are_not_warned() -> None:
+    # a star set: its 3 gears on housing bearings; a carrier fixed to the frame, written
+    # (a held carrier); a single pinion inside a ring with no sign of a moving axis
+    star = without_carriers(simple(24, 24, 72), 0, 1)
+    star["links"].append({"type": "bearing", "between": ["p", 0]})
+    assert codes(star) == []
+    held = simple(24, 24, 72)
+    held["links"][2] = {"type": "fixed", "between": ["c", 0]}
+    held["ports"][1] = {"component": "r", "role": "output"}
+    assert codes(held) == []
+    pair = {"name": "internal pair", "components": {0: {"role": "frame"}, 1: {"teeth": 20},
+                                                    2: {"teeth": 60, "internal": True}},
+            "links": [{"type": "mesh", "between": [1, 2]}],
+            "ports": [{"component": 1, "role": "input"}, {"component": 2, "role": "output"}]}
+    assert codes(pair) == []
+    pair["links"].append({"type": "bearing", "between": [1, 0]})
+    assert codes(pair) == []
+
+
 # --- undercut -----------------------------------------------------------------------------
 def pair(geometry: dict) -> dict:
     return {"name": "pair", "components": {0: {"role": "frame"}, 1: {"teeth": 14},
