@@ -260,3 +260,36 @@ def test_issue34_a_cycle_names_the_rows_beyond_a_max_speed():
     points = "wheels.speed [rpm],duration [s]\n-1500,1\n-1000,1\n"
     result = cycle(model, io.StringIO(points))
     assert [r.warnings for r in result.rows] == [(), ("over-max-speed",)]
+
+
+def test_issue34_the_hybrid_docs_model_is_the_model_file_and_its_speeds_hold():
+    """docs/hybrid.md shows models/ths2_power_split.yaml whole (but its description), and
+    says what a wheel speed of the wrong sign does: by hand, two external meshes between
+    ring and wheels keep the sense (w_R = w_W · 78/19 · 31/31) and Willis' relation of the
+    set gives w_S = 3.6 w_C - 2.6 w_R."""
+    import re
+    from pathlib import Path
+
+    import powergraph as pg
+    from powergraph.model import load_yaml_text
+
+    root = Path(__file__).resolve().parents[2]
+    docs = (root / "docs" / "hybrid.md").read_text(encoding="utf-8")
+    shown = load_yaml_text(re.search(r"```yaml\n(name: THS.*?)```", docs, re.S).group(1))
+    file = load_yaml_text((root / "models" / "ths2_power_split.yaml").read_bytes())
+    file.pop("description")
+    assert shown == file
+    model = pg.load_model(root / "models" / "ths2_power_split.yaml")
+    result = solve(model)
+    assert_conservation(result)
+    rpm = 30 / math.pi
+    ring = 400 * 78 / 19 * 31 / 31
+    assert result.kinematics.speed("R") * rpm == pytest.approx(ring, rel=1e-12)
+    assert result.kinematics.speed("S") * rpm == pytest.approx(3.6 * 2000 - 2.6 * ring,
+                                                               rel=1e-12)
+    assert not [w for w in result.warnings if w.code == "over-max-speed"]
+    backwards = solve(model.with_port(3, speed=-1500 / rpm))
+    mg1 = 3.6 * 2000 + 2.6 * 1500 * 78 / 19               # 23,210.5 rpm
+    warned = [w for w in backwards.warnings if w.code == "over-max-speed"]
+    assert [w.path for w in warned] == ["ports[1].max_speed", "ports[2].max_speed"]
+    assert f"runs at {mg1:.6g} rpm" in warned[0].message and f"{mg1:.6g}" in docs
