@@ -1,7 +1,9 @@
 """A duty cycle of 10^5 operating points through ``powergraph.analyses.cycle``: a plain
 train's rows go through the compiled sweep; a loop of single solves over the same rows
 is timed in the same run (on a sample, extrapolated, unless ``--full``), and a hybrid
-(machines on a bus: single solves per row) on a smaller sample.
+(machines on a bus: single solves per row) on a smaller sample. The result's columns
+are weighed too (bytes per row: issue 34; docs/performance.md has the figures of the
+command line, wall time and peak memory).
 
     python benchmarks/cycle.py [--points 100000] [--sample 2000] [--full]
 """
@@ -64,14 +66,20 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     rows = _single_rows(model, points)
     single = (time.perf_counter() - start) * args.points / n_single
-    worst = max(abs(a.loss - b.loss) / max(b.loss, 1e-300)
-                for a, b in zip(result.rows, rows))
+    worst = float(np.max(np.abs(result.loss[:n_single] - rows.loss)
+                         / np.maximum(rows.loss, 1e-300)))
     print(f"{args.points} points, plain train: cycle (sweep) {batched:.2f} s, first call "
           f"{cold:.2f} s (with the one-off imports); loop of single solves {single:.1f} s"
           f"{'' if args.full else ' (extrapolated from '}"
           f"{'' if args.full else str(n_single) + ')'}; speed-up {single / batched:.0f}x "
           f"({single / cold:.0f}x on the first call); largest relative difference of a "
           f"row's loss {worst:.1e}")
+    held = sum(a.nbytes for a in (result.power_in, result.power_out, result.loss,
+                                  result.efficiencies, result.verdict_codes,
+                                  result.electrical_share, result.negative_split,
+                                  result.with_machines, *result.losses.values()))
+    print(f"the result's own columns: {held / args.points:.0f} bytes per row (the "
+          "durations and file lines shared with the points)")
 
     ths = pg.load_model(ROOT / "models" / "ths2_power_split.yaml")
     n_h = min(args.sample, args.points)

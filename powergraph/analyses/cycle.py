@@ -2,10 +2,15 @@
 (docs/hybrid.md, ``powergraph cycle``).
 
 Rows of a plain train (no machines, no modes, no load-dependent losses) are evaluated at
-once by the compiled sweep (:mod:`powergraph.analyses.sweep`); the others — machines on
-buses, a ``mode`` column, friction laws and bearing losses — by one single solve per row.
+once by the compiled sweep (:mod:`powergraph.analyses.sweep`), its arrays becoming the
+result's columns; the others — machines on buses, a ``mode`` column, friction laws and
+bearing losses — by one single solve per row, into preallocated columns.
 ``CycleResult.method`` says which; a row the sweep does not solve is solved alone, for
 its reason.
+
+The result holds columns (one numpy array per quantity over the rows: tens of bytes per
+row, issue 34), not a record per row; ``result.rows[i]`` builds row ``i`` as a
+:class:`CycleRow` when asked for. The totals are sums over the arrays, in row order.
 
 A row that cannot be solved (its loads or speeds do not determine the train...) is an
 error naming it, unless ``keep_going``: then it is left out of the totals, which say how
@@ -18,68 +23,191 @@ Examples
 >>> m = load_model("models/planetary_2kh_carrier_to_ring.yaml")
 >>> r = cycle(m, io.StringIO("carrier.speed [rpm],carrier.power [kW],duration [s]\\n"
 ...                          "1000,1,2\\n2000,2,3\\n"))
->>> r.method, round(r.energy_in), round(r.efficiency, 6)
-('sweep', 8000, 0.99238)
+>>> r.method, round(r.energy_in), round(r.efficiency, 6), r.power_in.tolist()
+('sweep', 8000, 0.99238, [1000.0, 2000.0])
+>>> r.rows[1].verdict, r.rows[1].file_line
+('ok', 3)
 """
 from __future__ import annotations
 
 import math
 import os
-from typing import IO, Any
+from typing import IO, Any, Iterable, Mapping
 
+import numpy as np
+
+from powergraph.analyses.cycle_columns import (FAILED, LOCKED, SELF_LOCKING, Columns,
+                                               CycleRow, CycleRows, frozen, total)
 from powergraph.analyses.cycle_points import Points, check_modes, read_points
-from powergraph.analyses.cycle_rows import (NUMERICAL, CycleRow, RowError, element_label,
-                                            single_rows, solve_losses, sweep_rows, sweepable)
+from powergraph.analyses.cycle_rows import (NUMERICAL, RowError, element_label, single_rows,
+                                            solve_losses, sweep_rows, sweepable)
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
 from powergraph.records import record
 
 __all__ = ["CycleResult", "CycleRow", "cycle", "element_label", "solve_losses"]
-#: The single solves of every row (``benchmarks/cycle.py`` times them).
-_single_rows = single_rows
 
 
-@record
+@record(eq=False, repr=False)
 class CycleResult:
-    """The cycle's rows and totals: energies in, out and lost per element (J), the cycle
-    efficiency (energy out / energy in), time (s) in all and per mode and the rows that
-    lock, over the rows solved; the rows left out (that could not be solved) and their
-    time."""
+    """The cycle's rows, as columns over the rows, and its totals: energies in, out and
+    lost per element (J), the cycle efficiency (energy out / energy in), time (s) in all
+    and per mode and the rows that lock, over the rows solved; the rows left out (that
+    could not be solved) and their time.
+
+    Attributes
+    ----------
+    name, method : str
+        The model's name; ``sweep`` or ``single solves``.
+    durations : ndarray
+        Each row's duration, s.
+    lines : ndarray of int
+        Each row's line in the points file.
+    mode_codes : ndarray of int or None
+        Each row's mode, an index into ``mode_names`` (None without a mode column).
+    power_in, power_out, loss : ndarray
+        Power entering and leaving the system, and lost, W (0 in a row not solved).
+    efficiencies : ndarray
+        Each row's efficiency, NaN where undefined (no power passes, or not solved).
+    verdict_codes : ndarray of int32
+        Each row's verdict, an index into ``verdict_texts``: ``ok``, ``locked``,
+        ``self-locking``, ``no power``, then each distinct ``error: ...`` text once
+        (codes from :data:`~powergraph.analyses.cycle_columns.FAILED` on).
+    losses : Mapping[str, ndarray]
+        Loss of each element (mesh, coupling, bearing, drag, machine), W, NaN in the rows
+        without that element.
+    electrical_share : ndarray
+        With machines, the electrical path's share (docs/hybrid.md); NaN where none.
+    negative_split, with_machines : ndarray of bool
+        Power circulates through a bus; the row was solved with machines (elsewhere a
+        row's ``negative_split`` is None).
+    warnings : Mapping[str, ndarray of int]
+        ``{warning code: sorted row indices}`` of the rows whose solve warned.
+    """
 
     name: str
-    rows: tuple[CycleRow, ...]
     method: str
+    durations: np.ndarray
+    lines: np.ndarray
+    mode_names: tuple[str, ...]
+    mode_codes: np.ndarray | None
+    power_in: np.ndarray
+    power_out: np.ndarray
+    loss: np.ndarray
+    efficiencies: np.ndarray
+    verdict_codes: np.ndarray
+    verdict_texts: tuple[str, ...]
+    losses: Mapping[str, np.ndarray]
+    electrical_share: np.ndarray
+    negative_split: np.ndarray
+    with_machines: np.ndarray
+    warnings: Mapping[str, np.ndarray]
+
+    @classmethod
+    def of(cls, name: str, method: str, points: Points, columns: Columns) -> "CycleResult":
+        """The result of the filled ``columns`` of ``points`` (whose durations, lines and
+        mode codes it shares)."""
+        if (columns.verdict_codes < 0).any():
+            raise AssertionError("a row of the cycle was neither solved nor failed")
+        arrays = {key: frozen(getattr(columns, key)) for key in (
+            "power_in", "power_out", "loss", "efficiencies", "verdict_codes",
+            "electrical_share", "negative_split", "with_machines")}
+        return cls(name=name, method=method, durations=frozen(points.durations),
+                   lines=frozen(points.lines), mode_names=tuple(points.mode_names),
+                   mode_codes=(None if points.mode_codes is None else
+                               frozen(points.mode_codes)),
+                   verdict_texts=tuple(columns.verdict_texts),
+                   losses={k: frozen(v) for k, v in columns.losses.items()},
+                   warnings={k: frozen(v) for k, v in columns.warnings().items()}, **arrays)
+
+    @classmethod
+    def from_rows(cls, name: str, rows: Iterable[CycleRow], method: str) -> "CycleResult":
+        """The result holding ``rows`` (records, in order; ``index`` is their place)."""
+        rows = tuple(rows)
+        columns = Columns(len(rows))
+        for i, r in enumerate(rows):
+            if r.failed:
+                columns.fail(i, r.verdict)
+            else:
+                columns.set(i, r.power_in, r.power_out, r.loss, r.efficiency, r.verdict,
+                            r.losses, r.electrical_share, r.negative_split, r.warnings)
+        names = tuple(dict.fromkeys(r.mode for r in rows if r.mode is not None))
+        if names and any(r.mode is None for r in rows):
+            raise ValueError("rows with a mode and rows without one")
+        points = Points(columns=(), values=(), durations=np.array([r.duration for r in rows]),
+                        lines=np.array([r.file_line for r in rows], dtype=np.int64),
+                        mode_names=names, mode_codes=(np.array(
+                            [names.index(r.mode) for r in rows], dtype=np.uint32)
+                            if names else None))
+        return cls.of(name, method, points, columns)
+
+    def __repr__(self) -> str:
+        return (f"CycleResult(name={self.name!r}, method={self.method!r}, "
+                f"rows={len(self.durations)})")
+
+    @property
+    def rows(self) -> CycleRows:
+        """The rows as :class:`CycleRow` records, each built when read."""
+        return CycleRows(self)
+
+    def row(self, i: int) -> CycleRow:
+        """Row ``i`` as a record (negative ``i`` from the end)."""
+        n, asked = len(self.durations), int(i)
+        i = asked + n if asked < 0 else asked
+        if not 0 <= i < n:
+            raise IndexError(f"row {asked} of a cycle of {n} rows")
+        optional = lambda value: None if math.isnan(value) else value  # noqa: E731
+        return CycleRow(
+            index=i, duration=float(self.durations[i]),
+            mode=None if self.mode_codes is None else self.mode_names[self.mode_codes[i]],
+            power_in=float(self.power_in[i]), power_out=float(self.power_out[i]),
+            loss=float(self.loss[i]), efficiency=optional(float(self.efficiencies[i])),
+            verdict=self.verdict_texts[self.verdict_codes[i]],
+            losses={label: float(v[i]) for label, v in self.losses.items()
+                    if not math.isnan(v[i])},
+            electrical_share=optional(float(self.electrical_share[i])),
+            negative_split=bool(self.negative_split[i]) if self.with_machines[i] else None,
+            warnings=tuple(code for code, rows in self.warnings.items()
+                           if _holds(rows, i)),
+            line=int(self.lines[i]))
+
+    @property
+    def failed(self) -> np.ndarray:
+        """The rows that could not be solved (bool per row), left out of the totals."""
+        return self.verdict_codes >= FAILED
 
     @property
     def time(self) -> float:
         """Time (s) of the rows solved."""
-        return float(sum(r.duration for r in self.rows if not r.failed))
+        return total(self.durations[~self.failed])
 
     @property
     def left_out(self) -> list[int]:
         """Indices of the rows that could not be solved, left out of the totals."""
-        return [r.index for r in self.rows if r.failed]
+        return np.flatnonzero(self.failed).tolist()
 
     @property
     def left_out_time(self) -> float:
-        return float(sum(r.duration for r in self.rows if r.failed))
+        return total(self.durations[self.failed])
 
     @property
     def energy_in(self) -> float:
-        return float(sum(r.power_in * r.duration for r in self.rows))
+        return self._energy(self.power_in)
 
     @property
     def energy_out(self) -> float:
-        return float(sum(r.power_out * r.duration for r in self.rows))
+        return self._energy(self.power_out)
 
     @property
     def energy_lost(self) -> dict[str, float]:
         """``{element: J}``: each mesh, coupling, bearing, drag and machine."""
-        out: dict[str, float] = {}
-        for r in self.rows:
-            for label, loss in r.losses.items():
-                out[label] = out.get(label, 0.0) + loss * r.duration
-        return out
+        return {label: self._energy(np.where(np.isnan(w), 0.0, w))
+                for label, w in self.losses.items()}
+
+    def _energy(self, power: np.ndarray) -> float:
+        """Σ power × duration over the rows, in row order (J)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            return total(power * self.durations)
 
     @property
     def efficiency(self) -> float | None:
@@ -87,39 +215,42 @@ class CycleResult:
 
     @property
     def time_per_mode(self) -> dict[str, float]:
-        out: dict[str, float] = {}
-        for r in self.rows:
-            if not r.failed:
-                key = r.mode or "-"
-                out[key] = out.get(key, 0.0) + r.duration
-        return out
+        """``{mode: s}`` of the rows solved, the modes in the order of their first row
+        (``-`` without a mode column)."""
+        solved = ~self.failed
+        durations = self.durations[solved]
+        if self.mode_codes is None:
+            return {"-": total(durations)} if len(durations) else {}
+        codes = self.mode_codes[solved]
+        found, first = np.unique(codes, return_index=True)
+        return {self.mode_names[c]: total(durations[codes == c])
+                for c in found[np.argsort(first)].tolist()}
 
     @property
     def negative_split_time(self) -> float:
         """Time (s) the machines spend in a negative split (power circulating through a
         bus)."""
-        return float(sum(r.duration for r in self.rows if r.negative_split))
+        return total(self.durations[self.negative_split])
 
     @property
     def warned_rows(self) -> dict[str, list[int]]:
         """``{warning code: row indices}`` of the rows whose solve warned."""
-        out: dict[str, list[int]] = {}
-        for r in self.rows:
-            for code in r.warnings:
-                out.setdefault(code, []).append(r.index)
-        return out
+        return {code: rows.tolist() for code, rows in self.warnings.items()}
 
     @property
     def locked_rows(self) -> list[int]:
-        return [r.index for r in self.rows if r.verdict in ("locked", "self-locking")]
+        codes = self.verdict_codes
+        return np.flatnonzero((codes == LOCKED) | (codes == SELF_LOCKING)).tolist()
 
     def to_dict(self) -> dict[str, Any]:
-        return {"name": self.name, "method": self.method, "rows": [r.to_dict() for r in self.rows],
+        from powergraph.analyses.cycle_report import row_dicts
+
+        lost = self.energy_lost
+        return {"name": self.name, "method": self.method, "rows": row_dicts(self),
                 "time": self.time,
-                "left_out": {"rows": len(self.left_out), "time": self.left_out_time},
+                "left_out": {"rows": int(self.failed.sum()), "time": self.left_out_time},
                 "energy_in": self.energy_in, "energy_out": self.energy_out,
-                "energy_lost": self.energy_lost,
-                "total_energy_lost": float(sum(self.energy_lost.values())),
+                "energy_lost": lost, "total_energy_lost": float(sum(lost.values())),
                 "efficiency": self.efficiency, "time_per_mode": self.time_per_mode,
                 "locked_rows": self.locked_rows, "warned_rows": self.warned_rows,
                 "negative_split_time": self.negative_split_time}
@@ -138,6 +269,18 @@ class CycleResult:
         from powergraph.plot.cycle import plot_cycle
 
         return plot_cycle(self, ax=ax, **kwargs)
+
+
+def _holds(rows: np.ndarray, i: int) -> bool:
+    """Whether the sorted indices ``rows`` hold ``i``."""
+    k = int(np.searchsorted(rows, i))
+    return k < len(rows) and int(rows[k]) == i
+
+
+def _single_rows(model: Model, points: Points, keep_going: bool = True) -> CycleResult:
+    """Every row by its single solve (``benchmarks/cycle.py`` times them)."""
+    return CycleResult.of(model.name, "single solves", points,
+                          single_rows(model, points, keep_going))
 
 
 def cycle(model: Model, points: IO[str] | str | os.PathLike | Points,
@@ -168,24 +311,25 @@ def cycle(model: Model, points: IO[str] | str | os.PathLike | Points,
     result = None
     if sweepable(model, points):
         try:
-            result = CycleResult(model.name, sweep_rows(model, points, keep_going), "sweep")
+            result = CycleResult.of(model.name, "sweep", points,
+                                    sweep_rows(model, points, keep_going))
         except RowError:
             raise
         except (UsageError, ModelError, *NUMERICAL):
             pass    # a combination the compiled sweep does not take: solve row by row
     if result is None:
-        result = CycleResult(model.name, single_rows(model, points, keep_going),
-                             "single solves")
+        result = _single_rows(model, points, keep_going)
     _check_totals(result, points)
     return result
 
 
 def _check_totals(result: CycleResult, points: Points) -> None:
     """Refuse a cycle without a row solved, or whose totals are not finite."""
-    if len(result.left_out) == len(result.rows):
-        first = result.rows[0]
-        raise UsageError(f"no row could be solved ({len(result.rows)} row(s)); the first, "
-                         f"row {first.file_line}: {first.verdict[7:]}", points.source)
+    if result.failed.all():
+        raise UsageError(f"no row could be solved ({len(result.durations)} row(s)); the "
+                         f"first, row {result.lines[0]}: "
+                         f"{result.verdict_texts[result.verdict_codes[0]][7:]}",
+                         points.source)
     totals = [result.time, result.energy_in, result.energy_out,
               *result.energy_lost.values()]
     if not all(math.isfinite(t) for t in totals):

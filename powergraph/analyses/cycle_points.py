@@ -331,7 +331,7 @@ def _numbers(cells: list[str], column: Column):
         return None, (k, column.name, f"not a number: {brief(text)}" if text else "empty cell")
     with np.errstate(over="ignore", invalid="ignore"):
         values = raw * column.scale
-    limit = PORT_LIMITS.get(column.kind, np.inf)
+    limit = PORT_LIMITS.get(column.kind, np.finfo(float).max)   # a time: finite
     bad = ~(np.abs(values) <= limit)          # NaN and inf included
     if not bad.any():
         return values, None

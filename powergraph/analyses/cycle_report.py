@@ -1,10 +1,15 @@
-"""Text and CSV views of a :class:`~powergraph.analyses.cycle.CycleResult`."""
+"""Text, JSON rows and CSV views of a :class:`~powergraph.analyses.cycle.CycleResult`,
+read from its columns :data:`CHUNK` rows at a time (the CSV is written as it goes)."""
 from __future__ import annotations
 
 import csv
 import io
-from typing import TYPE_CHECKING, Any
+from math import isnan
+from typing import TYPE_CHECKING, Any, Iterator
 
+import numpy as np
+
+from powergraph.analyses.cycle_columns import LOCKED, SELF_LOCKING
 from powergraph.format import aligned_table, format_number
 
 if TYPE_CHECKING:   # pragma: no cover
@@ -14,40 +19,42 @@ if TYPE_CHECKING:   # pragma: no cover
 COLUMNS = (("row", None), ("duration", "s"), ("mode", None), ("power_in", "W"),
            ("power_out", "W"), ("loss", "W"), ("efficiency", "-"), ("verdict", None),
            ("electrical_share", "-"), ("negative_split", None), ("warnings", None))
-
-
 #: Rows named one by one in the text report, per list.
 SHOWN = 12
+#: Rows turned into Python values at a time (JSON rows, CSV lines).
+CHUNK = 1 << 16
 
 
 def text_report(result: "CycleResult") -> str:
     """Totals first (energies in kJ), then the energy lost per element. The totals are
     over the rows solved; the rows left out (``keep_going``) are counted and named."""
     kj = lambda joules: format_number(joules / 1e3, 6)   # noqa: E731
-    eff = result.efficiency
-    lines = [f"{result.name} — duty cycle, {len(result.rows)} operating points "
+    eff, lost = result.efficiency, result.energy_lost
+    lines = [f"{result.name} — duty cycle, {len(result.durations)} operating points "
              f"({result.method})", "",
              f"time                {format_number(result.time, 6)} s",
              f"energy in           {kj(result.energy_in)} kJ",
              f"energy out          {kj(result.energy_out)} kJ",
-             f"energy lost         {kj(sum(result.energy_lost.values()))} kJ",
+             f"energy lost         {kj(sum(lost.values()))} kJ",
              "cycle efficiency    " + (f"{eff:.2%}" if eff is not None else
                                        "undefined (no energy enters)")]
-    left_out = [result.rows[i] for i in result.left_out]
-    if left_out:
+    left_out = np.flatnonzero(result.failed)
+    if len(left_out):
         lines.append(f"left out            {len(left_out)} row(s), "
                      f"{format_number(result.left_out_time, 6)} s (cannot be solved; file "
-                     f"lines {_shown([r.file_line for r in left_out])})")
-    if any(r.negative_split is not None for r in result.rows):
+                     f"lines {_shown(result, left_out)})")
+    if result.with_machines.any():
         lines.append(f"negative split      {format_number(result.negative_split_time, 6)} s "
                      "(power circulating through a bus)")
-    if result.locked_rows:
-        lines.append(f"rows that lock      {_shown(_lines(result, result.locked_rows))}"
-                     " (file lines)")
-    for code, rows in result.warned_rows.items():
+    codes = result.verdict_codes
+    locked = np.flatnonzero((codes == LOCKED) | (codes == SELF_LOCKING))
+    if len(locked):
+        lines.append(f"rows that lock      {_shown(result, locked)} (file lines)")
+    for code, rows in result.warnings.items():
         lines.append(f"warning: {code} in {len(rows)} row(s), file lines "
-                     f"{_shown(_lines(result, rows))} (solve one for the details)")
-    lines += [f"warning: row {r.file_line}: {r.verdict[7:]}" for r in left_out[:SHOWN]]
+                     f"{_shown(result, rows)} (solve one for the details)")
+    lines += [f"warning: row {result.lines[i]}: {result.verdict_texts[codes[i]][7:]}"
+              for i in left_out[:SHOWN].tolist()]
     if len(left_out) > SHOWN:
         lines.append(f"warning: {len(left_out) - SHOWN} more row(s) cannot be solved "
                      "(their verdicts: --json or -o)")
@@ -56,7 +63,6 @@ def text_report(result: "CycleResult") -> str:
         lines += ["", "time per mode"]
         lines += aligned_table([["mode", "time [s]"]] + [[m, format_number(t, 6)]
                                                          for m, t in modes.items()], {1})
-    lost = result.energy_lost
     if lost:
         lines += ["", "energy lost per element"]
         lines += aligned_table([["element", "energy [kJ]"]]
@@ -64,30 +70,116 @@ def text_report(result: "CycleResult") -> str:
     return "\n".join(lines)
 
 
-def _lines(result: "CycleResult", indices: list[int]) -> list[int]:
-    return [result.rows[i].file_line for i in indices]
+def _shown(result: "CycleResult", rows: np.ndarray) -> str:
+    """The file lines of the first :data:`SHOWN` ``rows`` (indices), then an ellipsis."""
+    shown = result.lines[rows[:SHOWN]].tolist()
+    return ", ".join(map(str, shown)) + (", …" if len(rows) > SHOWN else "")
 
 
-def _shown(numbers: list[int]) -> str:
-    """The first :data:`SHOWN` numbers, then an ellipsis."""
-    return ", ".join(map(str, numbers[:SHOWN])) + (", …" if len(numbers) > SHOWN else "")
+def _optional(values: np.ndarray) -> list[float | None]:
+    """The values, None for NaN."""
+    return [None if isnan(v) else v for v in values.tolist()]
+
+
+def _parts(n: int) -> Iterator[slice]:
+    """The rows, :data:`CHUNK` at a time."""
+    return (slice(start, min(start + CHUNK, n)) for start in range(0, n, CHUNK))
+
+
+def _warnings(result: "CycleResult", part: slice, lists: bool) -> list:
+    """The warning codes of the rows ``part``: a list per row, or ``code;code`` text."""
+    size = part.stop - part.start
+    out: list = [[] for _ in range(size)] if lists else [""] * size
+    for code, rows in result.warnings.items():
+        low, high = np.searchsorted(rows, [part.start, part.stop]).tolist()
+        for k in (rows[low:high] - part.start).tolist():
+            if lists:
+                out[k].append(code)
+            else:
+                out[k] = f"{out[k]};{code}" if out[k] else code
+    return out
+
+
+#: The keys of a row in ``to_dict()["rows"]``, in order.
+ROW_KEYS = ("row", "line", "duration", "mode", "power_in", "power_out", "loss", "efficiency",
+            "verdict", "losses", "electrical_share", "negative_split", "warnings")
+
+
+def row_dicts(result: "CycleResult") -> list[dict[str, Any]]:
+    """Each row as :meth:`CycleRow.to_dict` gives it (the ``rows`` of ``to_dict()``),
+    built from the columns a chunk at a time."""
+    out: list[dict[str, Any]] = []
+    labels = list(result.losses)
+    for part in _parts(len(result.durations)):
+        size = part.stop - part.start
+        losses = zip(*(result.losses[label][part].tolist() for label in labels))
+        split = zip(result.negative_split[part].tolist(), result.with_machines[part].tolist())
+        columns = (
+            range(part.start, part.stop), result.lines[part].tolist(),
+            result.durations[part].tolist(),
+            [None] * size if result.mode_codes is None else
+            [result.mode_names[c] for c in result.mode_codes[part].tolist()],
+            result.power_in[part].tolist(), result.power_out[part].tolist(),
+            result.loss[part].tolist(), _optional(result.efficiencies[part]),
+            [result.verdict_texts[c] for c in result.verdict_codes[part].tolist()],
+            ([{k: v for k, v in zip(labels, row) if not isnan(v)} for row in losses]
+             if labels else [{} for _ in range(size)]),
+            _optional(result.electrical_share[part]), [s if m else None for s, m in split],
+            _warnings(result, part, lists=True))
+        out += [dict(zip(ROW_KEYS, values)) for values in zip(*columns)]
+    return out
 
 
 def to_csv(result: "CycleResult", path: Any = None) -> str | None:
-    """The per-row results as CSV (units in the header); written to ``path``, or
-    returned as text when ``path`` is None."""
-    out = io.StringIO()
-    writer = csv.writer(out, lineterminator="\n")
-    writer.writerow([f"{name} [{unit}]" if unit else name for name, unit in COLUMNS])
-    for r in result.rows:
-        writer.writerow([r.index, repr(r.duration), r.mode or "", repr(r.power_in),
-                         repr(r.power_out), repr(r.loss),
-                         "" if r.efficiency is None else repr(r.efficiency), r.verdict,
-                         "" if r.electrical_share is None else repr(r.electrical_share),
-                         "" if r.negative_split is None else str(r.negative_split).lower(),
-                         ";".join(r.warnings)])
+    """The per-row results as CSV (units in the header), written to ``path`` as the rows
+    are formatted, or returned as text when ``path`` is None."""
     if path is None:
+        out = io.StringIO()
+        _write_csv(result, out)
         return out.getvalue()
     with open(path, "w", encoding="utf-8", newline="") as f:
-        f.write(out.getvalue())
+        _write_csv(result, f)
     return None
+
+
+def _write_csv(result: "CycleResult", out: Any) -> None:
+    """The header, then the rows a chunk at a time: numbers by their repr (None: an empty
+    cell), each distinct text (verdict, mode, warnings) quoted once as the csv module
+    quotes a cell."""
+    csv.writer(out, lineterminator="\n").writerow(
+        [f"{name} [{unit}]" if unit else name for name, unit in COLUMNS])
+    verdicts = [_cell(text) for text in result.verdict_texts]
+    modes = [_cell(name) for name in result.mode_names]
+    warnings: dict[str, str] = {}
+    words = ("false", "true")
+    for part in _parts(len(result.durations)):
+        size = part.stop - part.start
+        columns = (
+            map(str, range(part.start, part.stop)), map(repr, result.durations[part].tolist()),
+            [""] * size if result.mode_codes is None else
+            [modes[c] for c in result.mode_codes[part].tolist()],
+            map(repr, result.power_in[part].tolist()),
+            map(repr, result.power_out[part].tolist()), map(repr, result.loss[part].tolist()),
+            _reprs(result.efficiencies[part]),
+            [verdicts[c] for c in result.verdict_codes[part].tolist()],
+            _reprs(result.electrical_share[part]),
+            [words[s] if m else "" for s, m in zip(result.negative_split[part].tolist(),
+                                                   result.with_machines[part].tolist())],
+            [warnings[w] if w in warnings else warnings.setdefault(w, _cell(w))
+             for w in _warnings(result, part, lists=False)])
+        out.write("\n".join(map(",".join, zip(*columns))) + "\n")
+
+
+def _reprs(values: np.ndarray) -> list[str]:
+    """The values' reprs, an empty cell for NaN."""
+    return ["" if isnan(v) else repr(v) for v in values.tolist()]
+
+
+def _cell(text: str) -> str:
+    """``text`` as the csv module writes it in a row of several cells (quoted when it
+    holds a comma, a quote or a line end)."""
+    if not text:
+        return ""
+    line = io.StringIO()
+    csv.writer(line, lineterminator="\n").writerow([text])
+    return line.getvalue()[:-1]

@@ -1,75 +1,33 @@
 """The rows of a duty cycle (:mod:`powergraph.analyses.cycle`): each row's powers, losses
-and verdict, by the compiled sweep for a plain train (a row it does not solve is solved
-alone, for its reason) or by one single solve per row (in the row's mode, the freewheels
-decided)."""
+and verdict, filled into :class:`~powergraph.analyses.cycle_columns.Columns` — at once from
+the compiled sweep's arrays for a plain train (a row it does not solve is solved alone, for
+its reason), or by one single solve per row (in the row's mode, the freewheels decided)."""
 from __future__ import annotations
 
 import math
-from dataclasses import field
-from typing import Any, Mapping
 
 import numpy as np
 
+from powergraph.analyses.cycle_columns import CycleRow  # noqa: F401  (re-exported)
+from powergraph.analyses.cycle_columns import LOCKED, NO_POWER, OK, SELF_LOCKING, Columns
 from powergraph.analyses.cycle_points import Points, as_dict
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
-from powergraph.records import record
 
 #: Errors of a numerical procedure (numpy's warnings are errors under the command line).
 NUMERICAL = (FloatingPointError, OverflowError, RuntimeWarning)
+#: The most rows per call of the compiled sweep (about 200 bytes of work per row).
+SLICE = 1 << 18
 
 
 class RowError(UsageError):
     """A row of the points that cannot be solved (without ``keep_going``)."""
 
 
-@record
-class CycleRow:
-    """One operating point: its duration (s), mode, powers entering and leaving the
-    system (W), loss (W), efficiency (None when no power passes) and verdict
-    (``ok``, ``locked``, ``self-locking``, ``no power`` or ``error: ...``)."""
-
-    index: int
-    duration: float
-    mode: str | None
-    power_in: float
-    power_out: float
-    loss: float
-    efficiency: float | None
-    verdict: str
-    losses: Mapping[str, float] = field(repr=False, default_factory=dict)
-    #: With machines: the electrical path's share and whether power circulates through
-    #: a bus (docs/hybrid.md); None otherwise.
-    electrical_share: float | None = None
-    negative_split: bool | None = None
-    #: Codes of the row's own warnings (``outside-map``, ``role-reversed``...: the
-    #: solve's, not the model file's), each a reason to doubt that row's numbers.
-    warnings: tuple[str, ...] = ()
-    #: The row's line in the points file (None: the row after the header, ``index + 2``).
-    line: int | None = None
-
-    @property
-    def failed(self) -> bool:
-        """The row could not be solved (``error: ...``): it is left out of the totals."""
-        return self.verdict.startswith("error")
-
-    @property
-    def file_line(self) -> int:
-        """The row's line in the points file."""
-        return self.index + 2 if self.line is None else self.line
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"row": self.index, "line": self.file_line, "duration": self.duration,
-                "mode": self.mode, "power_in": self.power_in, "power_out": self.power_out,
-                "loss": self.loss, "efficiency": self.efficiency, "verdict": self.verdict,
-                "losses": dict(self.losses), "electrical_share": self.electrical_share,
-                "negative_split": self.negative_split, "warnings": list(self.warnings)}
-
-
-def refused(points: Points, row: CycleRow) -> RowError:
-    """The error for a row that cannot be solved."""
-    return RowError(f"{points.source}: row {row.file_line}: cannot be solved: "
-                    f"{row.verdict[7:]} (--keep-going, keep_going=True, leaves such rows "
+def refused(points: Points, i: int, verdict: str) -> RowError:
+    """The error for row ``i``, that cannot be solved (``verdict``: ``error: ...``)."""
+    return RowError(f"{points.source}: row {points.lines[i]}: cannot be solved: "
+                    f"{verdict[7:]} (--keep-going, keep_going=True, leaves such rows "
                     "out of the totals)")
 
 
@@ -78,46 +36,62 @@ def sweepable(model: Model, points: Points) -> bool:
     return not (model.buses or model.shift_elements or points.mode_codes is not None)
 
 
-def sweep_rows(model: Model, points: Points, keep_going: bool) -> tuple[CycleRow, ...]:
-    """The rows through the compiled sweep; a row it does not solve (status other than
-    ``ok`` or ``locked``, powers not finite) is solved alone, for its reason."""
-    from powergraph.analyses.sweep import STATUS, sweep
+def sweep_rows(model: Model, points: Points, keep_going: bool) -> Columns:
+    """The rows through the compiled sweep, straight from its arrays, :func:`slices` of
+    rows at a time (compiled once: its work arrays are a slice's, not the cycle's); a row
+    it does not solve (status other than ``ok`` or ``locked``, powers not finite) is solved
+    alone, for its reason."""
+    from powergraph.analyses.sweep import CompiledSweep
 
     base = _cleared(model, points)
-    result = sweep(base, {path: v for (path, _, _), v in zip(points.columns, points.values)},
-                   quiet=True)
-    labels = {link: element_label(model, link) for link in result.losses}
+    paths = [path for path, _, _ in points.columns]
+    evaluate = CompiledSweep(base, paths)
+    columns, unsolved = Columns(len(points)), []
+    for part in slices(len(points)):
+        result = evaluate({path: v[part] for path, v in zip(paths, points.values)},
+                          quiet=True)
+        unsolved.append(_fill(columns, part, result, model))
+    for i in np.concatenate(unsolved).tolist():
+        _single_row(base, points, i, keep_going, columns)
+    return columns
+
+
+def slices(n: int) -> list[slice]:
+    """The rows evaluated by each call of the compiled sweep: slices of equal size, of
+    :data:`SLICE` rows or fewer (``2 * KERNEL_MIN_VARIANTS`` if that is more). A cycle
+    of at least ``KERNEL_MIN_VARIANTS`` rows is evaluated in slices at least that long,
+    so that the sweep takes its numba kernels as for the whole cycle at once."""
+    from powergraph.analyses.sweep.compile import KERNEL_MIN_VARIANTS
+
+    size = max(SLICE, 2 * KERNEL_MIN_VARIANTS)
+    count = max(1, -(-n // size))
+    bounds = [n * k // count for k in range(count + 1)]
+    return [slice(a, b) for a, b in zip(bounds, bounds[1:])]
+
+
+def _fill(columns: Columns, part: slice, result, model: Model) -> np.ndarray:
+    """Rows ``part`` from the sweep's ``result`` over them; returns the indices of the
+    rows it did not solve."""
+    from powergraph.analyses.sweep import STATUS
+
     p_in, p_out = np.asarray(result.input_power, float), -np.asarray(result.output_power, float)
+    total = np.asarray(result.total_loss, float)
     status = np.asarray(result.status)
-    solved = (((status == STATUS.index("ok")) | (status == STATUS.index("locked")))
-              & np.isfinite(p_in) & np.isfinite(p_out)
-              & np.isfinite(np.asarray(result.total_loss, float)))
+    locked = status == STATUS.index("locked")
+    solved = ((status == STATUS.index("ok")) | locked) & np.isfinite(p_in) \
+        & np.isfinite(p_out) & np.isfinite(total)
     p_in, p_out = _finite(p_in), _finite(p_out)
-    entering = (np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)).tolist()
-    leaving = (np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0)).tolist()
-    losses = {labels[k]: _finite(v).tolist() for k, v in result.losses.items()}
-    total = _finite(result.total_loss).tolist()
-    efficiency = np.asarray(result.efficiency, dtype=float).tolist()
-    locked = (status == STATUS.index("locked")).tolist()
-    locking = np.asarray(result.self_locking).tolist()
-    durations, lines = points.durations.tolist(), points.lines.tolist()
-    reversed_ = _reversed_roles(p_in, p_out).tolist()
-    rows = []
-    for i, ok in enumerate(solved.tolist()):
-        if not ok:
-            rows.append(_single_row(base, points, i, keep_going))
-            continue
-        verdict = ("locked" if locked[i] else "self-locking" if locking[i] else
-                   "ok" if entering[i] > 0 else "no power")
-        eff = efficiency[i]
-        rows.append(CycleRow(
-            index=i, duration=durations[i], mode=None, power_in=entering[i],
-            power_out=leaving[i], loss=total[i],
-            efficiency=eff if math.isfinite(eff) else None, verdict=verdict,
-            losses={label: values[i] for label, values in losses.items()},
-            warnings=("role-reversed",) if reversed_[i] and verdict == "ok" else (),
-            line=lines[i]))
-    return tuple(rows)
+    entering = np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)
+    leaving = np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0)
+    verdicts = np.where(locked, LOCKED, np.where(np.asarray(result.self_locking, bool),
+                        SELF_LOCKING, np.where(entering > 0, OK, NO_POWER)))
+    efficiency = np.asarray(result.efficiency, dtype=float)
+    columns.fill(part, solved, entering, leaving, _finite(total),
+                 np.where(np.isfinite(efficiency), efficiency, np.nan), verdicts,
+                 {element_label(model, k): _finite(v) for k, v in result.losses.items()})
+    columns.warn("role-reversed", part.start + np.flatnonzero(
+        _reversed_roles(p_in, p_out) & solved & (verdicts == OK)))
+    return part.start + np.flatnonzero(~solved)
 
 
 def _reversed_roles(p_in: np.ndarray, p_out: np.ndarray) -> np.ndarray:
@@ -146,26 +120,29 @@ def _cleared(model: Model, points: Points) -> Model:
     return model
 
 
-def single_rows(model: Model, points: Points,
-                keep_going: bool = True) -> tuple[CycleRow, ...]:
-    """One single solve per row; without ``keep_going`` the first row that cannot be
-    solved is an error."""
+def single_rows(model: Model, points: Points, keep_going: bool = True) -> Columns:
+    """One single solve per row, into preallocated columns; without ``keep_going`` the
+    first row that cannot be solved is an error."""
     base = _cleared(model, points)
-    return tuple(_single_row(base, points, i, keep_going) for i in range(len(points)))
+    columns = Columns(len(points))
+    for i in range(len(points)):
+        _single_row(base, points, i, keep_going, columns)
+    return columns
 
 
-def _single_row(base: Model, points: Points, i: int, keep_going: bool) -> CycleRow:
-    """Row ``i`` by the single solve (``base``: the model with the loaded ports cleared)."""
+def _single_row(base: Model, points: Points, i: int, keep_going: bool,
+                columns: Columns) -> None:
+    """Row ``i`` by the single solve (``base``: the model with the loaded ports cleared),
+    into ``columns``."""
     from powergraph.statics.machine_report import (boundary_powers, electrical_share,
                                                    negative_split)
 
-    mode, duration, line = points.mode(i), float(points.durations[i]), int(points.lines[i])
     try:
         variant = base
         for path, value in as_dict(points, i).items():
             _, index, kind = path.split(".")
             variant = variant.with_port(int(index), **{kind: value})
-        result = _solve(variant, mode)
+        result = _solve(variant, points.mode(i))
         crossing = boundary_powers(result)
         power_in = sum(p for p in crossing if p > 0) + 0.0
         power_out = -sum(p for p in crossing if p < 0) + 0.0
@@ -173,22 +150,20 @@ def _single_row(base: Model, points: Points, i: int, keep_going: bool) -> CycleR
             raise FloatingPointError("the powers are not finite")
     except (PowerGraphError, *NUMERICAL) as error:
         reason = " ".join(str(error).split())
-        row = CycleRow(i, duration, mode, 0.0, 0.0, 0.0, None, "error: " + (
-            reason if isinstance(error, PowerGraphError) else f"numerical problem ({reason})"),
-            line=line)
+        verdict = "error: " + (reason if isinstance(error, PowerGraphError)
+                               else f"numerical problem ({reason})")
+        columns.fail(i, verdict)
         if not keep_going:
-            raise refused(points, row)
-        return row
+            raise refused(points, i, verdict)
+        return
     verdict = ("locked" if result.lock is not None else
                "self-locking" if result.self_locking else
                "no power" if result.efficiency is None else "ok")
-    return CycleRow(
-        index=i, duration=duration, mode=mode, power_in=power_in, power_out=power_out,
-        loss=result.total_loss, efficiency=result.efficiency, verdict=verdict,
-        losses=solve_losses(result),
-        electrical_share=electrical_share(result) if result.machines else None,
-        negative_split=negative_split(result) if result.machines else None,
-        warnings=_own_warnings(result), line=line)
+    columns.set(i, power_in, power_out, result.total_loss, result.efficiency, verdict,
+                solve_losses(result),
+                electrical_share=electrical_share(result) if result.machines else None,
+                negative_split=negative_split(result) if result.machines else None,
+                warnings=_own_warnings(result))
 
 
 def _solve(model: Model, mode: str | None):

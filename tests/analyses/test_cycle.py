@@ -4,16 +4,22 @@ issue 34: a row that cannot be solved is an error naming it, or with ``keep_goin
 left out of the totals, which count it."""
 from __future__ import annotations
 
+import csv as csv_module
 import dataclasses
+import gc
 import io
 import json
+import math
+import tracemalloc
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import powergraph as pg
-from powergraph.analyses.cycle import cycle, solve_losses
-from powergraph.analyses.cycle_points import read_points
+from powergraph.analyses import cycle_report, cycle_rows
+from powergraph.analyses.cycle import CycleResult, CycleRow, cycle, solve_losses
+from powergraph.analyses.cycle_points import Points, read_points
 from powergraph.cli.main import main
 from powergraph.errors import ModelError, UsageError
 from powergraph.statics.machine_report import boundary_powers
@@ -198,8 +204,9 @@ def test_issue34_a_cycle_with_no_row_solved_is_an_error_even_keeping_going():
 
 
 def test_issue34_energies_that_overflow_name_the_duration_column():
-    # 1e300 W for 1e10 s: 1e310 J, beyond the largest float (1.8e308)
-    csv = "carrier.speed [rpm],carrier.power [W],duration [s]\n1000,1e300,1e10\n"
+    # 1e12 W (the most a port takes, as in model files) for 1e297 s: 1e309 J, beyond the
+    # largest float (1.8e308)
+    csv = "carrier.speed [rpm],carrier.power [W],duration [s]\n1000,1e12,1e297\n"
     with pytest.raises(UsageError, match="^points: column 'duration \\[s\\]': the energies over "
                                          "the cycle overflow"):
         cycle(pg.load_model(PLANETARY), io.StringIO(csv))
@@ -213,3 +220,161 @@ def test_issue34_points_with_a_mode_the_model_lacks_are_refused_before_a_solve()
     with pytest.raises(UsageError, match="^points: row 2, column 'mode': unknown mode '2' "
                                          "\\(the model's modes: 1\\)"):
         cycle(fewer, points)
+
+
+# --- issue 34: the result in columns ----------------------------------------------------
+
+ETA0 = 0.98 * 0.99                          # the model file's two meshes
+ETA = 4 * ETA0 / (3 * ETA0 + 1)             # (k + 1)·η0/(k·η0 + 1), k = 72/24 = 3
+
+
+def _plain_points(n: int, seed: int = 34) -> Points:
+    """``n`` rows driving the planetary's carrier forwards: 500-3000 rpm, 0.5-20 kW, each
+    for 0.1-10 s."""
+    rng = np.random.default_rng(seed)
+    return Points(columns=(("ports.0.speed", 0, "speed"), ("ports.0.power", 0, "power")),
+                  values=(rng.uniform(500, 3000, n) * RPM, rng.uniform(500.0, 20e3, n)),
+                  durations=rng.uniform(0.1, 10.0, n), lines=np.arange(2, n + 2))
+
+
+def test_issue34_energies_are_the_hand_sums_of_power_times_duration():
+    points = _plain_points(1000)
+    result = cycle(pg.load_model(PLANETARY), points)
+    assert result.method == "sweep"
+    power, seconds = points.values[1].tolist(), points.durations.tolist()
+    e_in = math.fsum(p * t for p, t in zip(power, seconds))
+    # every row has the closed-form efficiency, so energy out is ETA times energy in
+    assert result.efficiencies == pytest.approx(np.full(1000, ETA), rel=1e-12)
+    assert result.power_out == pytest.approx(ETA * points.values[1], rel=1e-12)
+    assert result.energy_in == pytest.approx(e_in, rel=1e-13)
+    assert result.energy_out == pytest.approx(ETA * e_in, rel=1e-12)
+    assert sum(result.energy_lost.values()) == pytest.approx((1 - ETA) * e_in, rel=1e-9)
+    assert result.efficiency == pytest.approx(ETA, rel=1e-12)
+    assert result.time == pytest.approx(math.fsum(seconds), rel=1e-13)
+
+
+@pytest.mark.slow
+def test_issue34_a_cycle_holds_tens_of_bytes_per_row_not_a_record_per_row():
+    """10^5 rows through the sweep (with its numba kernels, as for 10^6): the result keeps
+    at most 8 bytes per value of a row (its JSON row: 12 values and one per element), the
+    points' arrays shared, not copied; while the sweep runs, its work arrays over the rows
+    take a few times that. A CycleRow record per row, with its losses dict, would alone
+    take some 750 bytes per row."""
+    model, n = pg.load_model(PLANETARY), 100_000
+    cycle(model, _plain_points(n))          # the one-off compile and imports, not counted
+    points = _plain_points(n)
+    gc.collect()
+    tracemalloc.start()
+    try:
+        result = cycle(model, points)
+        kept, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    values = 12 + len(result.losses)        # row, line, duration, mode, powers... warnings
+    assert len(result.rows) == n and result.failed.sum() == 0
+    assert kept < 8 * values * n + 65536
+    assert peak < 4 * 8 * values * n
+    assert np.shares_memory(result.durations, points.durations)
+
+
+def test_issue34_the_rows_are_records_built_from_the_columns():
+    model = pg.load_model(PLANETARY)
+    result = cycle(model, io.StringIO(ZERO_SPEED_ROWS), keep_going=True)
+    rows = result.rows
+    assert len(rows) == 4 and rows[-1] == rows[3] == result.row(3)
+    assert [r.index for r in rows[1:3]] == [1, 2]
+    with pytest.raises(IndexError, match="row 4 of a cycle of 4 rows"):
+        result.row(4)
+    # the JSON rows and the records agree, key for key
+    assert [r.to_dict() for r in rows] == result.to_dict()["rows"]
+    # a failed row: no power, no efficiency (NaN in the column, None in its record)
+    assert result.failed.tolist() == [False, True, False, True]
+    assert np.isnan(result.efficiencies[[1, 3]]).all() and rows[1].efficiency is None
+    assert all(np.isnan(v[[1, 3]]).all() for v in result.losses.values())
+    assert rows[1].losses == {} and set(rows[0].losses) == set(result.losses)
+    # the two rows fail for the same reason: its text is stored once
+    reason = "error: " + _zero_speed_reason()
+    assert result.verdict_texts.count(reason) == 1
+    assert result.verdict_codes[1] == result.verdict_codes[3] != result.verdict_codes[0]
+    # the columns are read-only, as a frozen record's values
+    with pytest.raises(ValueError):
+        result.power_in[0] = 1.0
+
+
+def test_issue34_a_hybrid_cycle_fills_its_machine_columns_row_by_row():
+    csv = ("engine.speed [rpm],engine.power [kW],wheels.speed [rpm],time [s]\n"
+           "2000,30,400,0\n1500,15,1400,10\n2500,40,200,15\n")
+    result = cycle(pg.load_model(THS), io.StringIO(csv))
+    # the negative split of row 2 (see the hybrid test above), as columns
+    assert result.negative_split.tolist() == [False, True, False]
+    assert result.with_machines.all() and not np.isnan(result.electrical_share).any()
+    assert result.electrical_share[1] < 0 < result.electrical_share[0]
+    assert result.negative_split_time == 5.0
+
+
+def test_issue34_the_csv_is_written_in_chunks_with_every_row_in_order(monkeypatch, tmp_path):
+    monkeypatch.setattr(cycle_report, "CHUNK", 3)       # 6 rows: two chunks
+    text = ZERO_SPEED_ROWS + "1500,-1,1\n1000,0,1\n"     # lines 7, 8: reversed, no power
+    result = cycle(pg.load_model(PLANETARY), io.StringIO(text), keep_going=True)
+    path = tmp_path / "rows.csv"
+    assert result.to_csv(path) is None
+    rows = list(csv_module.DictReader(path.open(encoding="utf-8")))
+    assert rows == list(csv_module.DictReader(io.StringIO(result.to_csv())))
+    assert [r["row"] for r in rows] == ["0", "1", "2", "3", "4", "5"]
+    assert [r["verdict"][:6] for r in rows] == ["ok", "error:", "ok", "error:", "ok",
+                                                "no pow"]
+    assert [r["warnings"] for r in rows] == ["", "", "", "", "role-reversed", ""]
+    assert [r["efficiency [-]"] == "" for r in rows] == [False, True, False, True, False,
+                                                         True]
+    assert float(rows[0]["power_out [W]"]) == pytest.approx(1000 * ETA, rel=1e-12)
+
+
+@pytest.mark.slow       # matplotlib's first import
+def test_issue34_the_plot_leaves_a_gap_at_a_row_that_cannot_be_solved():
+    import matplotlib.pyplot as plt
+
+    result = cycle(pg.load_model(PLANETARY), io.StringIO(ZERO_SPEED_ROWS), keep_going=True)
+    ax = result.plot()
+    power_in = ax.patches[0].get_data()
+    # rows of 2, 3, 0.5 and 4 s: edges at 0, 2, 5, 5.5, 9.5 s; 1 kW, a gap, 2 kW, a gap
+    assert power_in.edges.tolist() == [0.0, 2.0, 5.0, 5.5, 9.5]
+    assert power_in.values[[0, 2]].tolist() == [1.0, 2.0]
+    assert np.isnan(power_in.values[[1, 3]]).all()
+    plt.close(ax.figure)
+
+
+def test_issue34_a_result_from_records_totals_them_by_hand():
+    rows = [CycleRow(0, 2.0, None, 1000.0, 900.0, 100.0, 0.9, "ok", {"mesh": 100.0}),
+            CycleRow(1, 3.0, None, 0.0, 0.0, 0.0, None, "error: no speed"),
+            CycleRow(2, 0.5, None, 400.0, 300.0, 100.0, 0.75, "ok", {"mesh": 100.0})]
+    result = CycleResult.from_rows("demo", rows, "single solves")
+    # 1 kW · 2 s + 0.4 kW · 0.5 s in; 0.9 kW · 2 s + 0.3 kW · 0.5 s out
+    assert (result.energy_in, result.energy_out) == (2200.0, 1950.0)
+    assert result.energy_lost == {"mesh": 250.0}
+    assert (result.time, result.left_out, result.left_out_time) == (2.5, [1], 3.0)
+    assert [r.to_dict() for r in result.rows] == [r.to_dict() for r in rows]
+
+
+def test_issue34_rows_swept_in_slices_keep_their_places(monkeypatch):
+    # 9 rows in slices of 4, 4 and 1: row 5 (line 7) does not turn under a power, row 6
+    # (line 8) is driven from its output; each keeps its place across the slices.
+    monkeypatch.setattr(cycle_rows, "slices",
+                        lambda n: [slice(0, 4), slice(4, 8), slice(8, n)])
+    kw = [1, 2, 3, 4, 5, 6, -1, 8, 9]
+    rpm = [1000, 1100, 1200, 1300, 1400, 0, 1600, 1700, 1800]
+    text = "carrier.speed [rpm],carrier.power [kW]\n" + "".join(
+        f"{n},{p}\n" for n, p in zip(rpm, kw))
+    result = cycle(pg.load_model(PLANETARY), io.StringIO(text), keep_going=True)
+    assert result.method == "sweep" and result.left_out == [5]
+    assert result.warned_rows == {"role-reversed": [6]}
+    assert result.row(5).file_line == 7 and result.row(5).verdict.startswith("error: ")
+    forwards = [k for k in range(9) if k not in (5, 6)]
+    assert result.power_out[forwards] == pytest.approx(ETA * 1e3 * np.array(kw)[forwards],
+                                                       rel=1e-12)
+    # Row 6: the ring drives and the carrier gives 1 kW; the meshes pass 1/(k + 1) of the
+    # power in the carrier's frame, so η' = 1 - (1 - η0)/(k + 1) = (k + η0)/(k + 1).
+    back = (3 + ETA0) / 4
+    assert result.power_in[6] == pytest.approx(1e3 / back, rel=1e-12)
+    # 1 s per row: energy in is the sum of the powers entering
+    assert result.energy_in == pytest.approx(1e3 * sum(kw[k] for k in forwards)
+                                             + 1e3 / back, rel=1e-12)

@@ -69,7 +69,8 @@ HEADER = "carrier.speed [rpm],carrier.power [kW]"
     (f"{HEADER}\n1000,1e306\n", "row 2, column 'carrier.power [kW]': '1e306' overflows once in W"),
     (f"{HEADER},duration [s]\n1000,1,1e308\n1000,1,1e308\n",
      "column 'duration [s]': the durations add up to more than the largest float"),
-    (f"{HEADER},duration [s]\n1000,1e300,1e10\n",
+    # 1e9 kW = 1e12 W, the most a port takes, for 1e297 s: 1e309 J > 1.8e308
+    (f"{HEADER},duration [s]\n1000,1e9,1e297\n",
      "column 'duration [s]': the energies over the cycle overflow"),
     (f"{HEADER}\n1000,1\n0,1\n", "row 3: cannot be solved: ports[0].power: a power is given "
      "but the component does not turn (speed 0)"),
