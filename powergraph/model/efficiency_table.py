@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 import re
 from pathlib import Path
 
@@ -43,6 +44,8 @@ from powergraph.records import record
 _COLUMN = re.compile(r"\s*(?P<kind>speed|torque|efficiency)\s*(?:\[(?P<unit>[^\]]*)\])?\s*",
                      re.IGNORECASE)
 _LINE = re.compile(r".*?(?:\r\n|\r|\n)|.+", re.DOTALL)
+#: A line holding nothing but spaces and commas (skipped by the row-by-row reading).
+_BLANK = re.compile(r"(?:\A|\r\n|\r|\n)[\s,]*(?:\r\n|\r|\n)")
 #: Most rows of one table (a map of 500 × 500 points is far finer than any catalogue's).
 MAX_ROWS = 250_000
 
@@ -76,7 +79,7 @@ def read_efficiency_table(name: str, folder: Path | None, path: str) -> Efficien
     limit, UTF-8 with or without a byte-order mark); the rows are checked as they are
     read, so a file of more than :data:`MAX_ROWS` stops there.
     """
-    file = Path(name) if folder is None else folder / name
+    file = name if folder is None else os.path.join(folder, name)   # a trailing / kept
     try:
         data = read_bytes(file, "table", "an efficiency map")
     except UsageError as error:
@@ -87,10 +90,9 @@ def read_efficiency_table(name: str, folder: Path | None, path: str) -> Efficien
     except UsageError as error:
         raise ModelError(error.message, path) from None
     del data
-    try:
-        return _grid(_rows(csv.reader(_lines(text)), name, path), name, path)
-    except csv.Error as error:
-        raise ModelError(f"cannot read the efficiency map {name!r}: {error}", path) from None
+    lines, speed, torque, eta = _read_rows(text, name, path)
+    _check(lines, speed, torque, eta, name, path)
+    return _grid(lines, speed, torque, eta, name, path)
 
 
 def _lines(text: str):
@@ -115,40 +117,76 @@ def _columns(header: list[str], name: str, path: str) -> tuple[float, float]:
         raise ModelError(f"{name} line 1: {error.message}", path) from None
 
 
-def _rows(reader, name: str, path: str):
-    """``(line, speed rad/s, torque N·m, efficiency)`` per data row, header checked, at
-    most :data:`MAX_ROWS` of them."""
-    header = next(reader, None)
-    if header is None:
+def _read_rows(text: str, name: str, path: str) -> tuple[np.ndarray, ...]:
+    """The file's lines, speeds (rad/s), torques (N·m) and efficiencies of its rows, at
+    most :data:`MAX_ROWS`: numpy's parser reads a plain file at once; a file it cannot
+    read (a cell that is no number, a row of another width, blank lines) is read row by
+    row, so that its first problem names its line."""
+    lines = _lines(text)
+    header = next(csv.reader([next(lines, "")]))
+    if not header:
         raise ModelError(f"{name}: the file is empty", path)
-    to_rad_s, to_n_m = _columns(header, name, path)
+    scales = _columns(header, name, path)
+    table = None if _BLANK.search(text) else _plain_table(lines)
+    if table is None:
+        numbers = list(_rows(csv.reader(_lines(text)), name, path))
+        table = np.array([row[1:] for row in numbers], dtype=float).reshape(-1, 3)
+        line_numbers = np.array([row[0] for row in numbers], dtype=np.int64)
+    else:
+        line_numbers = np.arange(2, len(table) + 2)
+    if len(table) > MAX_ROWS:
+        raise ModelError(f"{name} line {line_numbers[MAX_ROWS]}: more than {MAX_ROWS} rows",
+                         path)
+    return (line_numbers, table[:, 0] * scales[0], table[:, 1] * scales[1], table[:, 2])
+
+
+def _plain_table(lines) -> np.ndarray | None:
+    """The rows as a table of finite numbers three wide, read by numpy, or None where
+    numpy cannot read them so (the rows are then read one by one)."""
+    try:
+        table = np.loadtxt(lines, delimiter=",", quotechar='"', dtype=float, ndmin=2,
+                           max_rows=MAX_ROWS + 1)
+    except ValueError:
+        return None
+    return table if table.shape[1] == 3 and np.isfinite(table).all() else None
+
+
+def _rows(reader, name: str, path: str):
+    """``(line, speed, torque, efficiency)`` per data row (in the file's units), the
+    header skipped, at most one more than :data:`MAX_ROWS`: every cell a finite number."""
+    next(reader, None)
     count = 0
     for row in reader:
+        if not any(cell.strip() for cell in row):
+            continue                               # a blank line
         line = reader.line_num
-        try:
-            speed, torque, eta = map(float, row)   # three numbers: the common case, fast
-        except ValueError:
-            if not any(cell.strip() for cell in row):
-                continue                           # a blank line
-            if len(row) != 3:
-                raise ModelError(f"{name} line {line}: expected 3 values, got {len(row)}",
-                                 path) from None
-            speed, torque, eta = (_number(cell, name, line, path) for cell in row)
+        if len(row) != 3:
+            raise ModelError(f"{name} line {line}: expected 3 values, got {len(row)}", path)
         count += 1
+        yield (line, *(_number(cell, name, line, path) for cell in row))
         if count > MAX_ROWS:
-            raise ModelError(f"{name} line {line}: more than {MAX_ROWS} rows", path)
-        if not math.isfinite(speed + torque + eta):   # nan or inf (or a finite overflow)
-            speed, torque, eta = (_number(cell, name, line, path) for cell in row)
-        if speed < 0 or torque < 0:
-            raise ModelError(f"{name} line {line}: speeds and torques are magnitudes (>= 0); "
-                             "the map applies to both senses", path)
-        if speed * to_rad_s > MAX_SPEED or torque * to_n_m > MAX_TORQUE:
-            raise ModelError(f"{name} line {line}: beyond the largest speed ({MAX_SPEED:g} "
-                             f"rad/s) or torque ({MAX_TORQUE:g} N·m) a model takes", path)
-        if not MIN_MACHINE_EFFICIENCY <= eta <= 1:
-            raise ModelError(f"{name} line {line}: efficiency must be in "
-                             f"[{MIN_MACHINE_EFFICIENCY:g}, 1], got {eta:g}", path)
-        yield line, speed * to_rad_s, torque * to_n_m, eta
+            return
+
+
+def _check(lines: np.ndarray, speed: np.ndarray, torque: np.ndarray, eta: np.ndarray,
+           name: str, path: str) -> None:
+    """Every row's values possible, else a :class:`ModelError` naming the first row that
+    is not: finite, speeds and torques magnitudes (>= 0) within a model's ranges,
+    efficiencies in [``MIN_MACHINE_EFFICIENCY``, 1]."""
+    rules = (
+        (~np.isfinite(speed + torque + eta), "not finite numbers"),
+        ((speed < 0) | (torque < 0), "speeds and torques are magnitudes (>= 0); the map "
+                                     "applies to both senses"),
+        ((speed > MAX_SPEED) | (torque > MAX_TORQUE),
+         f"beyond the largest speed ({MAX_SPEED:g} rad/s) or torque ({MAX_TORQUE:g} N·m) "
+         "a model takes"),
+        (~((eta >= MIN_MACHINE_EFFICIENCY) & (eta <= 1)),
+         f"efficiency must be in [{MIN_MACHINE_EFFICIENCY:g}, 1], got {{eta:g}}"),
+    )
+    for bad, message in rules:
+        if bad.any():
+            k = int(np.argmax(bad))
+            raise ModelError(f"{name} line {lines[k]}: " + message.format(eta=eta[k]), path)
 
 
 def _number(cell: str, name: str, line: int, path: str) -> float:
@@ -162,23 +200,27 @@ def _number(cell: str, name: str, line: int, path: str) -> float:
     return value
 
 
-def _grid(rows, name: str, path: str) -> EfficiencyTable:
-    """The rows (read one by one) as a full rectilinear grid (every speed with every
-    torque, once)."""
-    where: dict[tuple[float, float], tuple[int, float]] = {}
-    for line, speed, torque, eta in rows:
-        if (speed, torque) in where:
-            raise ModelError(f"{name} line {line}: the point {speed:g} rad/s, {torque:g} N·m "
-                             f"is given twice (line {where[speed, torque][0]})", path)
-        where[speed, torque] = (line, eta)
-    speeds = sorted({speed for speed, _ in where})
-    torques = sorted({torque for _, torque in where})
+def _grid(lines: np.ndarray, speed: np.ndarray, torque: np.ndarray, eta: np.ndarray,
+          name: str, path: str) -> EfficiencyTable:
+    """The rows as a full rectilinear grid (every speed with every torque, once)."""
+    speeds, i = np.unique(speed, return_inverse=True)
+    torques, j = np.unique(torque, return_inverse=True)
+    cell = i.ravel() * len(torques) + j.ravel()
+    order = np.argsort(cell, kind="stable")
+    twice = np.flatnonzero(np.diff(cell[order]) == 0)
+    if len(twice):
+        first, again = order[twice[0]], order[twice[0] + 1]
+        raise ModelError(f"{name} line {lines[again]}: the point {speed[again]:g} rad/s, "
+                         f"{torque[again]:g} N·m is given twice (line {lines[first]})", path)
     if len(speeds) < 2 or len(torques) < 2:
         raise ModelError(f"{name}: a map needs at least two speeds and two torques", path)
-    missing = len(speeds) * len(torques) - len(where)
+    missing = len(speeds) * len(torques) - len(cell)
     if missing:
         raise ModelError(f"{name}: {missing} point(s) of the grid of {len(speeds)} speeds × "
                          f"{len(torques)} torques are missing (every speed needs every "
                          "torque)", path)
-    values = tuple(tuple(where[s, t][1] for t in torques) for s in speeds)
-    return EfficiencyTable(name, tuple(speeds), tuple(torques), values)
+    values = np.empty(len(cell))
+    values[cell] = eta
+    grid = values.reshape(len(speeds), len(torques))
+    return EfficiencyTable(name, tuple(speeds.tolist()), tuple(torques.tolist()),
+                           tuple(map(tuple, grid.tolist())))

@@ -26,7 +26,7 @@ from __future__ import annotations
 import os
 import stat
 from pathlib import Path
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 
@@ -87,6 +87,21 @@ class size_limit:
             _override[self.kind].pop()
 
 
+def brief(value: Any, limit: int = 60) -> str:
+    """``repr(value)`` cut to ``limit`` characters, for messages about hostile values.
+
+    >>> brief("x" * 100)[-20:]
+    '... (102 characters)'
+    >>> len(brief("x" * 100))
+    76
+    """
+    try:
+        text = repr(value)
+    except ValueError:  # an integer too long for str()
+        return f"an integer of {value.bit_length()} bits"
+    return text if len(text) <= limit else f"{text[:limit - 4]}... ({len(text)} characters)"
+
+
 def read_bytes(path: str | Path, kind: str, what: str) -> bytes:
     """The bytes of an input file of ``kind``, refusing one over its size limit.
 
@@ -95,7 +110,9 @@ def read_bytes(path: str | Path, kind: str, what: str) -> bytes:
     (:class:`ModelError` for models, :class:`UsageError` for tables).
     """
     spec, limit = KINDS[kind], max_bytes(kind)
-    path = Path(path)
+    path = os.fspath(path)      # as written: Path() would drop a trailing slash
+    if "\0" in path:
+        raise spec.error(f"{brief(path)} is not a file name (it holds a NUL character)")
     try:
         with open(path, "rb") as handle:
             info = os.fstat(handle.fileno())
@@ -103,7 +120,7 @@ def read_bytes(path: str | Path, kind: str, what: str) -> bytes:
                 raise IsADirectoryError
             if stat.S_ISREG(info.st_mode) and info.st_size > limit:
                 raise spec.error(_too_large(path, what, info.st_size, limit, spec))
-            data = _read_text_bytes(handle, limit, spec.error, str(path))
+            data = _read_text_bytes(handle, limit, spec.error, path)
     except FileNotFoundError:
         raise spec.error(f"no such file: {path}") from None
     except IsADirectoryError:
@@ -138,7 +155,7 @@ def _read_text_bytes(handle, limit: int, error: type[PowerGraphError], source: s
     return b"".join(chunks)
 
 
-def _too_large(path: Path, what: str, size: int | None, limit: int, spec: Kind) -> str:
+def _too_large(path: str, what: str, size: int | None, limit: int, spec: Kind) -> str:
     found = f"{size} bytes" if size is not None else "more than that"
     return (f"{path} is too large for {what} ({found}; the limit is {limit} bytes: raise it "
             f"with {spec.option} or {spec.variable})")

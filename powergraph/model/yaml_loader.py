@@ -38,7 +38,7 @@ import yaml
 from yaml import events as ev
 
 from powergraph.errors import ModelError
-from powergraph.model.input_files import KINDS, max_bytes, place, read_bytes
+from powergraph.model.input_files import KINDS, brief, max_bytes, place, read_bytes
 from powergraph.model.input_files import size_limit  # noqa: F401  (the CLI sets it here)
 from powergraph.model.yaml_tags import MAX_NUMBER_DIGITS, MERGE_KEY, TagProblem
 from powergraph.model.yaml_tags import check_collection_tag, tagged_scalar
@@ -75,21 +75,6 @@ def gc_paused() -> Iterator[None]:
     finally:
         if enabled:
             gc.enable()
-
-
-def brief(value: Any, limit: int = 60) -> str:
-    """``repr(value)`` cut to ``limit`` characters, for messages about hostile values.
-
-    >>> brief("x" * 100)[-20:]
-    '... (102 characters)'
-    >>> len(brief("x" * 100))
-    76
-    """
-    try:
-        text = repr(value)
-    except ValueError:  # an integer too long for str()
-        return f"an integer of {value.bit_length()} bits"
-    return text if len(text) <= limit else f"{text[:limit - 4]}... ({len(text)} characters)"
 
 
 def join_path(prefix: str, key: Any) -> str:
