@@ -90,10 +90,10 @@ def compare_row_of(text: str, mesh_efficiency, compare_row):
     """``compare``'s row of ``MODEL`` or ``MODEL:MODE``: a mode is compared as its gear
     (freewheels decided), back-driven as coasting with its freewheels decided again."""
     import dataclasses
-    from pathlib import Path
+    import os
 
     path, mode = text, None
-    if not Path(text).exists() and ":" in text:
+    if not os.path.exists(text) and ":" in text:     # False, not an error, for any name
         path, mode = text.rsplit(":", 1)
     model = load(path, mesh_efficiency)
     if not model.modes and mode is None:

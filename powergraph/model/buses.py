@@ -20,6 +20,7 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
+from powergraph.model.names import name_text
 from powergraph.model.spec import Bus, Port
 from powergraph.model.units import parse_quantity
 
@@ -55,7 +56,7 @@ def machine_fields(item: Mapping[str, Any], path: str,
     max_speed = item.get("max_speed")
     if max_speed is not None:
         max_speed = parse_quantity(max_speed, "speed", f"{path}.max_speed")
-    return {"efficiency": efficiency, "bus": str(item["bus"]), "max_speed": max_speed}
+    return {"efficiency": efficiency, "bus": name_text(item["bus"], f"{path}.bus", "bus name"), "max_speed": max_speed}
 
 
 def buses_of(raw: Mapping | None, ports: tuple[Port, ...]) -> Mapping[str, Bus]:
@@ -68,7 +69,8 @@ def buses_of(raw: Mapping | None, ports: tuple[Port, ...]) -> Mapping[str, Bus]:
         battery = (attrs or {}).get("battery")
         value = None if battery in _FREE else parse_quantity(battery, "power",
                                                               f"{path}.battery")
-        buses[str(name)] = Bus(name=str(name), battery=value)
+        text = name_text(name, path, "bus name")
+        buses[text] = Bus(name=text, battery=value)
     used = set()
     for port in ports:
         if port.bus is None:

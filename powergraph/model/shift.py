@@ -25,6 +25,7 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
+from powergraph.model.names import name_text
 from powergraph.model.spec import Component, Link, ShiftElement
 
 
@@ -42,7 +43,8 @@ def shift_element(raw: Mapping, index: int, between: tuple[str, str],
         from powergraph.model.block_bearing import parse_drag
 
         drag = parse_drag(raw["drag"], f"{path}.drag")
-    return ShiftElement(index=index, kind=kind, name=str(raw["name"]), between=between,
+    name = name_text(raw["name"], f"{path}.name", "shift element name")
+    return ShiftElement(index=index, kind=kind, name=name, between=between,
                         raw_between=tuple(raw["between"]),
                         engaged=bool(raw.get("engaged", False)), holds=raw.get("holds"),
                         drag=drag)
@@ -87,5 +89,5 @@ def read_modes(raw: Any, elements: tuple[ShiftElement, ...]) -> Mapping[str, tup
             if name in engaged:
                 raise ModelError(f"{name} is listed twice", f"{path}[{i}]")
             engaged.append(name)
-        modes[str(mode)] = tuple(engaged)
+        modes[name_text(mode, path, "mode name")] = tuple(engaged)
     return MappingProxyType(modes)

@@ -17,6 +17,7 @@ from typing import Any, Mapping
 from powergraph.errors import Caveat, ModelError
 from powergraph.model.buses import buses_of, machine_fields
 from powergraph.model.conform import check_document, conform
+from powergraph.model.names import name_text, optional_name
 from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
 from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
@@ -107,18 +108,15 @@ def _model(data: Any, source: str | None) -> Model:
     from powergraph.model.graph import bodies_of, check_topology
 
     bodies, body_of = bodies_of(components, links)
-    model = Model(name=_text(data["name"]), description=_text(data.get("description")),
+    model = Model(name=name_text(data["name"], "name", "model name"),
+                  description=_text(data.get("description")),
                   components=MappingProxyType(components), links=links, ports=ports,
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
                   shift_elements=shift_elements, modes=modes,
                   mode=next(iter(modes), None), warnings=tuple(caveats),
                   buses=buses_of(data.get("buses"), ports))
     if modes:
-        from powergraph.model.modes import resolve
-
-        # The default state (the first mode, freewheels holding); errors name the mode.
-        resolve(model, model.mode, {e.name: True for e in shift_elements
-                                    if e.kind == "freewheel"})
+        model = _default_state(model)
     check_topology(model)
     if model.has_bearing_losses:
         from powergraph.model.block_bearing import check_bearing_loads
@@ -133,6 +131,22 @@ def _model(data: Any, source: str | None) -> Model:
         model = dataclasses.replace(model, tolerances=validate_tolerances(data["tolerances"],
                                                                          model))
     return model
+
+
+def _default_state(model: Model) -> Model:
+    """The model in its default state: the first mode with its freewheels holding, or
+    overrunning where holding them all would join what cannot be joined (a freewheel
+    between the input and the output, or holding a port); errors name the mode."""
+    from powergraph.model.modes import resolve
+
+    try:
+        resolve(model, model.mode, {e.name: True for e in model.shift_elements
+                                    if e.kind == "freewheel"})
+        return model
+    except ModelError:
+        overrunning = resolve(model, model.mode)      # the mode's own error, if any
+    return dataclasses.replace(model, links=overrunning.links, bodies=overrunning.bodies,
+                               body_of=overrunning.body_of)
 
 
 def _shift_elements(data: Mapping, links: tuple, components: Mapping[str, Component],
@@ -176,7 +190,9 @@ def _components(raw: Mapping) -> dict[str, Component]:
     components: dict[str, Component] = {}
     for raw_id, attrs in raw.items():
         path = f"components.{raw_id}"
-        if isinstance(raw_id, bool) or not isinstance(raw_id, (int, str)) or raw_id == "":
+        if isinstance(raw_id, (bool, str)) or raw_id is None:
+            name_text(raw_id, path, "component id")    # a boolean, nothing, two lines
+        if not isinstance(raw_id, (int, str)) or raw_id == "":
             raise ModelError("a component id must be an integer or a non-empty string, "
                              f"got {brief(raw_id)}", "components")
         cid = str(raw_id)
@@ -206,7 +222,8 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
         if attrs.get("role") == "frame":
             raise ModelError("the frame does not turn, so it has no drag", f"{path}.drag")
         drag = parse_drag(drag, f"{path}.drag")
-    return Component(id=cid, raw_id=raw_id, name=_text(attrs.get("name")),
+    return Component(id=cid, raw_id=raw_id,
+                     name=optional_name(attrs.get("name"), f"{path}.name", "component name"),
                      role=attrs.get("role"), kind=_text(attrs.get("kind")), teeth=teeth,
                      internal=attrs.get("internal", False), count=attrs.get("count", 1),
                      geometry=geometry, note=_text(attrs.get("note")), drag=drag)
@@ -238,7 +255,8 @@ def _link(raw: Mapping, index: int, components: Mapping[str, Component], frame: 
 
         fields["blocks"] = MappingProxyType(parse_bearing_blocks(raw, path))
     return Link(index=index, type=kind, between=(a, b), raw_between=tuple(between),
-                name=_text(raw.get("name")), **fields)
+                name=optional_name(raw.get("name"), f"links[{index}].name", "link name"),
+                **fields)
 
 
 def _mesh_fields(raw: Mapping, path: str, pair: tuple[str, str],
@@ -298,7 +316,8 @@ def _ports(raw: list, components: Mapping[str, Component],
             if caveat is not None:
                 caveats.append(caveat)
         ports.append(Port(index=index, component=component, role=item["role"],
-                          name=_text(item.get("name")), **values,
+                          name=optional_name(item.get("name"), f"{path}.name", "port name"),
+                          **values,
                           **machine_fields(item, path, folder)))
     if not any(p.role == "input" for p in ports) or not any(p.role == "output" for p in ports):
         raise ModelError("a train needs at least one input and one output port", "ports")

@@ -103,7 +103,7 @@ def test_a_first_mode_holding_the_input_is_refused_at_load_naming_the_mode() -> 
     data = copy.deepcopy(BASE)
     data["links"].append({"type": "brake", "name": "BS", "between": ["s", 0]})
     data["modes"] = {"bad": ["BS"]}
-    refused(data, "modes.bad", "engages BS, F: component 's' is fixed to the frame")
+    refused(data, "modes.bad", "engages BS: component 's' is fixed to the frame")
 
 
 def test_drag_on_an_open_element_is_a_bearing_drag() -> None:

@@ -345,3 +345,24 @@ def test_issue34_no_consistent_state_lists_a_bounded_number_of_reasons() -> None
     assert "F1 holding would carry" in coast.verdict
     assert "(it holds positive only)" in coast.verdict
     assert "\n" not in coast.verdict and coast.verdict.count(";") <= 12
+
+
+def test_a_freewheel_between_input_and_output_loads_and_overruns() -> None:
+    """An overdrive-style freewheel F9 from the input to the output (holds positive:
+    w_in - w_out >= 0) was refused at load, because the default state held every
+    freewheel and so joined the two ports. Now the default state leaves it overrunning,
+    and each mode decides it: by hand, 1st (7/3), 2nd (4/3) and reverse (-3) turn the
+    output slower than the input or backwards, so F9 slips forward (w_in (1 - 1/i) > 0)
+    and carries nothing: every gear is the plain Simpson's."""
+    text = SIMPSON.read_text().replace("modes:", "  - {type: freewheel, name: F9, "
+                                       "between: [in, c1], holds: positive}\nmodes:")
+    model = loads_model(text)
+    plain = pg.load_model(SIMPSON)
+    for mode, ratio in (("1", 7 / 3), ("2", 4 / 3), ("R", -3.0)):
+        got = solve_mode(model, mode)
+        assert_conservation(got.result)
+        assert got.freewheels["F9"] == "overrunning"
+        assert got.element("F9").slip_speed == pytest.approx(
+            got.result.kinematics.speed("in") * (1 - 1 / ratio), rel=1e-12)
+        assert got.result.efficiency == pytest.approx(
+            solve_mode(plain, mode).result.efficiency, rel=1e-12)
