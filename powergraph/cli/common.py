@@ -26,10 +26,68 @@ class CommandParser(argparse.ArgumentParser):
         self.exit(2, f"powergraph: error: {message} (see {self.prog} -h)\n")
 
 
+#: A list longer than this is printed one item a line (each item on one line).
+LONG_LIST = 100
+
+
 def print_json(data: Any) -> None:
-    """Print one JSON object on stdout (NaN/inf become null: JSON has no such numbers)."""
-    json.dump(_finite(data), sys.stdout, indent=2, allow_nan=False)
+    """Print one JSON object on stdout (NaN/inf become null: JSON has no such numbers).
+
+    Indented by two spaces, but a list of more than :data:`LONG_LIST` items (a duty
+    cycle's rows, a sweep's variants) is written one item a line, each by the standard
+    library's compiled encoder: a 10^5-row cycle prints in seconds, not minutes.
+
+    >>> print_json({"a": [1.5, float("nan")], "rows": [{"x": i} for i in range(101)]})
+    ... # doctest: +ELLIPSIS
+    {
+      "a": [
+        1.5,
+        null
+      ],
+      "rows": [
+        {"x": 0},
+        ...
+        {"x": 100}
+      ]
+    }
+    """
+    for piece in _json_pieces(data, ""):
+        sys.stdout.write(piece)
     sys.stdout.write("\n")
+
+
+def _json_pieces(data: Any, indent: str):
+    """The text of ``data`` in pieces: :func:`json.dumps` with ``indent=2`` for what is
+    small, a long list's items one a line."""
+    if isinstance(data, dict) and _has_long_list(data):
+        inner = indent + "  "
+        yield "{"
+        for i, (key, value) in enumerate(data.items()):
+            yield ("," if i else "") + f"\n{inner}{json.dumps(str(key))}: "
+            yield from _json_pieces(value, inner)
+        yield f"\n{indent}}}" if data else "}"
+    elif isinstance(data, (list, tuple)) and len(data) > LONG_LIST:
+        yield "["
+        for i, item in enumerate(data):
+            yield ("," if i else "") + f"\n{indent}  {_compact(item)}"
+        yield f"\n{indent}]"
+    else:
+        text = json.dumps(_finite(data), indent=2, allow_nan=False)
+        yield text.replace("\n", "\n" + indent) if indent else text
+
+
+def _has_long_list(data: Any) -> bool:
+    if isinstance(data, dict):
+        return any(_has_long_list(v) for v in data.values())
+    return isinstance(data, (list, tuple)) and len(data) > LONG_LIST
+
+
+def _compact(item: Any) -> str:
+    """One item on one line (``{"x": 0}``), NaN and inf as null."""
+    try:
+        return json.dumps(item, allow_nan=False)
+    except ValueError:                   # a NaN or an infinity somewhere inside
+        return json.dumps(_finite(item), allow_nan=False)
 
 
 def _finite(data: Any) -> Any:

@@ -336,3 +336,31 @@ def test_the_programs_help_lists_every_command_and_a_commands_help_its_own(capsy
     with pytest.raises(SystemExit):
         main(["solve", "--help"])
     assert "usage: powergraph solve" in capsys.readouterr().out
+
+
+def test_print_json_writes_long_lists_one_item_a_line(capsys) -> None:
+    """A duty cycle's --json of 10^5 rows took minutes through the indented pure-Python
+    encoder: lists longer than LONG_LIST are now written one item a line. The text is
+    the same JSON, NaN and infinities as null, small parts indented as before."""
+    import json
+    import math
+
+    from powergraph.cli.common import LONG_LIST, print_json
+
+    n = LONG_LIST + 1
+    rows = [{"row": i, "efficiency": math.nan if i == 3 else 0.5, "losses": {"a": 1.0}}
+            for i in range(n)]
+    data = {"name": "t", "rows": rows, "nested": {"values": list(range(n)), "empty": {}},
+            "short": [1.0, math.inf], "none": {}}
+    print_json(data)
+    text = capsys.readouterr().out
+    expected = {"name": "t", "rows": [dict(r, efficiency=None if r["row"] == 3 else 0.5)
+                                      for r in rows],
+                "nested": {"values": list(range(n)), "empty": {}}, "short": [1.0, None],
+                "none": {}}
+    assert json.loads(text) == expected
+    lines = text.splitlines()
+    assert '    {"row": 3, "efficiency": null, "losses": {"a": 1.0}},' in lines
+    assert len(lines) < 3 * n + 20            # one line a row, not one a value
+    print_json({"a": [1, 2]})                 # small: indented as json.dumps(indent=2)
+    assert capsys.readouterr().out == json.dumps({"a": [1, 2]}, indent=2) + "\n"
