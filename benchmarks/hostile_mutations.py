@@ -3,7 +3,8 @@
 Each class turns a library model's text into a hostile variant and says what is expected:
 ``"any"`` (exit 0 or 2, one line, no traceback, no hang) or ``"same"`` (the mutation does
 not change the train: the answer must equal the plain model's). ``CLASSES`` lists them;
-``mutate(name, text, rng)`` applies one.
+``mutate(name, text, rng)`` applies one. At the end, the mutations of the modes table,
+shift elements and machine ports that benchmarks/hostile_tables.py puts in its cases.
 """
 from __future__ import annotations
 
@@ -279,3 +280,178 @@ def _flow(value: Any) -> str:
         return "[" + ", ".join(_flow(v) for v in value) + "]"
     text = yaml.safe_dump(value, default_flow_style=True, width=10**9, allow_unicode=True)
     return text.removesuffix("\n...\n").strip()
+
+
+# --- modes and machines (benchmarks/hostile_tables.py puts them in files with tables) -----
+#: Mode names as written in the file: mathtext, YAML 1.1 booleans and nulls (unquoted),
+#: numbers, odd text.
+MODE_NAMES = ["$x$", "$\\frac{1}{0}$", "$", "$$", "$\\undefinedcommand$", "a$b$c", "$^$",
+              "off", "on", "yes", "no", "y", "n", "true", "False", "~", "null", "1.0", "01",
+              "0x1", "1e3", ".inf", "' '", "-", "--mode", "-1", "日本", "'a,b'", "\"a\\nb\"",
+              "x" * 300, "'#'", "'%'", "'R '", "'\"'", "\"\\t\"", "'{'", "'1:2'"]
+#: Port and element names: mathtext and text that draws badly.
+ODD_NAMES = ["$\\omega$", "$", "$x", "$\\frac{a$", "$^$", "$\\undefinedcommand$", "a$b$c",
+             "\\", "%", "{}", "_", "MG1\nMG2", "", " ", "x" * 500, "日本", "\x1b[31m"]
+JUNK_HOLDS = ["maybe", None, 1, ["positive"], "Positive", True, "both", "", {"a": 1}]
+JUNK_EFFICIENCY = [0, 1e-300, 1.5, 1.0000001, -0.9, ".nan", ".inf", "90 %", "0.9 W", "",
+                   [], {}, True, "1e400", 5e-7, 1e-6, {"map": "x.csv", "extra": 1},
+                   {"mapp": "x.csv"}]
+JUNK_BATTERY = ["1e308 W", ".nan", "nan W", "x", "-1e400 W", "5 rpm", [], {}, "FREE", None,
+                0, "0", True, "1 W**99999", "inf W", "-1e308 W", "1e-300 W", 1e308]
+JUNK_MAX_SPEED = ["13500 rpm", "-1 rpm", "0 rpm", ".nan", "fast", "1e400 rpm", "13500 N*m",
+                  13500, [], "inf rpm", "1e-300 rpm", "1 rpm", "1e308 rad/s", None, "-0 rpm"]
+
+
+def _fast(text: str) -> Any:
+    return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+
+
+def _fast_dump(data: Any) -> str:
+    return yaml.dump(data, Dumper=getattr(yaml, "CSafeDumper", yaml.SafeDumper),
+                     sort_keys=False, allow_unicode=True, width=10**9)
+
+
+def typed_name(raw: str) -> str:
+    """The name as one types it on the command line (``--mode on``): the parsed key when
+    it is text, else the text as written."""
+    key = next(iter(_fast(f"{raw}: 1") or {None: 1}))
+    return key if isinstance(key, str) else raw
+
+
+def _frame_id(data: dict) -> Any:
+    return next((k for k, v in data["components"].items()
+                 if isinstance(v, dict) and v.get("role") == "frame"), 0)
+
+
+def _with_modes(data: dict, modes: list[tuple[str, Any]]) -> str:
+    """The model with its ``modes:`` block written by hand: keys as given (unquoted
+    booleans, repeated keys), values in flow style."""
+    rest = {k: v for k, v in data.items() if k != "modes"}
+    return _fast_dump(rest) + "modes:\n" + "".join(f"  {k}: {_flow(v)}\n" for k, v in modes)
+
+
+def mode_names(text: str, rng: random.Random):
+    """Modes renamed (mathtext, YAML booleans, numbers) or two modes of one name."""
+    data = _fast(text)
+    modes = [(_flow(str(k)), v) for k, v in data["modes"].items()]
+    how = rng.choice(["rename", "rename", "rename-all", "repeat", "int-and-str"])
+    if how == "repeat":
+        modes.append(rng.choice(modes))
+    elif how == "int-and-str":
+        modes += [("1", modes[0][1]), ("'1'", modes[-1][1])]
+    else:
+        which = range(len(modes)) if how == "rename-all" else [rng.randrange(len(modes))]
+        for i, name in zip(which, rng.sample(MODE_NAMES, len(which))):
+            modes[i] = (name, modes[i][1])
+    return _with_modes(data, modes), how
+
+
+def mode_tables(text: str, rng: random.Random):
+    """Engaged-element lists with unknown, repeated or freewheel names, empty, not lists;
+    the table empty, not a mapping, or many modes."""
+    data = _fast(text)
+    modes = [(_flow(str(k)), list(v)) for k, v in data["modes"].items()]
+    names = [str(link.get("name")) for link in data["links"] if "name" in link]
+    i = rng.randrange(len(modes))
+    how = rng.choice(["unknown", "repeat", "empty", "not-a-list", "table", "freewheel",
+                      "everything", "one-less", "many"])
+    if how == "unknown":
+        modes[i][1].append(rng.choice(["X", "c1", "0", 1, None, names[0] + " ", "", [names[0]],
+                                       {"a": 1}, "$x$", True]))
+    elif how == "repeat":
+        modes[i][1].append(modes[i][1][0] if modes[i][1] else names[0])
+    elif how in ("empty", "not-a-list"):
+        value = [] if how == "empty" else rng.choice([None, "", names[0], 5, {}, {"a": 1},
+                                                      [[names[0]]]])
+        modes[i] = (modes[i][0], value)
+    elif how == "table":
+        rest = {k: v for k, v in data.items() if k != "modes"}
+        junk = rng.choice(["{}", "[]", "~", "x", "[[C1]]", "5"])
+        return _fast_dump(rest) + f"modes: {junk}\n", how
+    elif how == "freewheel":
+        data["links"].append({"type": "freewheel", "name": "FX", "between":
+                              list(data["links"][-1]["between"]), "holds": "positive"})
+        modes[i][1].append("FX")
+    elif how == "everything":
+        modes[i] = (modes[i][0], names)
+    elif how == "one-less" and modes[i][1]:
+        modes[i][1].pop(rng.randrange(len(modes[i][1])))
+    elif how == "many":
+        modes = [(f"'{n}'", modes[n % len(modes)][1]) for n in range(rng.choice([30, 60]))]
+    return _with_modes(data, modes), how
+
+
+def shift_elements(text: str, rng: random.Random):
+    """Many parallel freewheels, ``holds`` junk, repeated element names, an element on
+    one member or the frame twice, junk drag, and a zero input load."""
+    data = _fast(text)
+    links, frame = data["links"], _frame_id(data)
+    shift = [link for link in links if link.get("type") in ("clutch", "brake", "freewheel")]
+    element = rng.choice(shift)
+    how = rng.choice(["freewheels", "freewheels", "freewheels-spread", "holds", "same-name",
+                      "one-member", "frame-frame", "drag", "engaged", "zero-load", "zero-load"])
+    if how.startswith("freewheels"):
+        members = [k for k in data["components"] if str(k)[:1] in "src"] + [frame]
+        for k in range(rng.choice([2, 3, 5, 8, 12, 16, 20])):
+            pair = element["between"] if how == "freewheels" else rng.sample(members, 2)
+            links.append({"type": "freewheel", "name": f"FW{k}", "between": list(pair),
+                          "holds": rng.choice(["positive", "negative"])})
+    elif how == "holds":
+        free = [link for link in shift if link.get("type") == "freewheel"] or [element]
+        target = rng.choice(free)
+        target.update(type="freewheel", holds=rng.choice(JUNK_HOLDS))
+        if target["holds"] is None:
+            del target["holds"]
+    elif how == "same-name":
+        element["name"] = rng.choice([e for e in shift if e is not element] or shift)["name"]
+    elif how in ("one-member", "frame-frame"):
+        element["between"] = [element["between"][0] if how == "one-member" else frame] * 2
+    elif how == "drag":
+        element["drag"] = rng.choice([{"no_load_torque": "1e308 N*m"}, -1, "x",
+                                      {"a": "1 N*m", "b": "1e300 N*m"}, {"a": ".nan"},
+                                      {"no_load_torque": "-5 N*m"}, {}])
+    elif how == "engaged":
+        element["engaged"] = rng.choice(["yes", 1, None, [], "maybe"])
+    else:
+        port = next(p for p in data["ports"] if p.get("role") == "input")
+        port.pop("power", None)
+        port.update(rng.choice([{"torque": "0 N*m"}, {"power": "0 kW"}, {"speed": "0 rpm"},
+                                {"torque": "1e-300 N*m"}]))
+    names = [(_flow(str(k)), v) for k, v in data["modes"].items()]
+    return _with_modes(data, names), how
+
+
+def machine_ports(text: str, rng: random.Random):
+    """Machines with repeated names, names of other ports' components or mathtext, junk
+    efficiency, bus, battery, buses or max_speed; two machines on one body."""
+    data = _fast(text)
+    ports = data["ports"]
+    machines = [p for p in ports if p.get("role") == "machine"]
+    port = rng.choice(machines)
+    other = rng.choice([p for p in ports if p is not port])
+    how = rng.choice(["same-name", "component-name", "odd-name", "efficiency", "no-bus",
+                      "bus", "battery", "buses", "max-speed", "max-speed", "one-body",
+                      "loads"])
+    field, value = {
+        "same-name": ("name", other.get("name", str(other["component"]))),
+        "component-name": ("name", str(other["component"])),
+        "odd-name": ("name", ODD_NAMES), "efficiency": ("efficiency", JUNK_EFFICIENCY),
+        "bus": ("bus", ["ac", None, [], {}, 5, "", "$x$"]), "max-speed": ("max_speed",
+                                                                          JUNK_MAX_SPEED),
+        "one-body": ("component", other["component"])}.get(how, (None, None))
+    if field:
+        target = other if how == "max-speed" and rng.random() < 0.2 else port
+        target[field] = rng.choice(value) if isinstance(value, list) else value
+    elif how == "no-bus":
+        port.pop("bus", None)
+    elif how == "battery":
+        data["buses"] = {k: {"battery": rng.choice(JUNK_BATTERY)} for k in data["buses"]}
+    elif how == "buses":
+        data["buses"] = rng.choice([[], None, "dc", {"dc": 5}, {"dc": {"battery": "0 W",
+                                    "x": 1}}, {**data["buses"], "spare": {"battery": "0 W"}},
+                                    {"dc": None}])
+    else:
+        port.update(rng.choice([{"power": "5 kW"}, {"torque": "1e308 N*m"}, {"speed": "0 rpm"},
+                                {"role": "Machine"}, {"role": "machine", "bus": "dc",
+                                                      "component": _frame_id(data)}]))
+    return _fast_dump(data), how
