@@ -229,7 +229,18 @@ def built(name: str, build):
     return _BUILT[name]
 
 
-@pytest.fixture(scope="module", params=RESULTS, ids=[name for name, _, _ in RESULTS])
+#: Results whose building takes a second or so (a Monte Carlo run, a synthesis, a
+#: cycloid study, a symbolic derivation): checked by the full suite, not the quick one.
+EXPENSIVE = ("ToleranceResult", "SynthesisResult", "FluctuationStudy", "TrainFluctuation",
+             "FigureData", "FormulaResult", "CycloidFluctuation")
+
+
+def _params(results: list) -> list:
+    return [pytest.param(r, id=r[0], marks=pytest.mark.slow if r[0] in EXPENSIVE else ())
+            for r in results]
+
+
+@pytest.fixture(scope="module", params=_params(RESULTS))
 def case(request):
     name, build, draws = request.param
     return name, built(name, build), draws
@@ -288,8 +299,7 @@ DISPLAYED = ("ComparisonTable", "BacklashReport", "CycloidFluctuation", "VolumeR
              "SynthesisResult")
 
 
-@pytest.fixture(scope="module", params=[r for r in RESULTS if r[0] in DISPLAYED],
-                ids=[r[0] for r in RESULTS if r[0] in DISPLAYED])
+@pytest.fixture(scope="module", params=_params([r for r in RESULTS if r[0] in DISPLAYED]))
 def shown(request):
     name, build, _ = request.param
     return name, built(name, build)
