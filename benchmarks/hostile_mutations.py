@@ -158,7 +158,10 @@ def rename_id(text: str, rng: random.Random):
     if not isinstance(components, dict):
         return text, "same"
     old = rng.choice(list(components))
-    new = rng.choice([i for i in ODD_IDS if i not in {str(k) for k in components}])
+    ports = data.get("ports") if isinstance(data.get("ports"), list) else []
+    names = {str(p.get("name")) for p in ports if isinstance(p, dict)}   # a port's name
+    taken = {str(k) for k in components} | names     # may not be another component's id
+    new = rng.choice([i for i in ODD_IDS if i not in taken])
     renamed = _renamed(data, old, new)
     return (_dump(renamed), "same") if renamed is not None else (text, "same")
 

@@ -259,8 +259,9 @@ def points_same(table: list, rng: random.Random, data: Any = None):
                 for row in table[1:]:
                     row[j] = repr(float(row[j]) * unit[1])
     elif how in ("spaces", "exponent"):
-        table = [table[0]] + [[f" {c} " if how == "spaces" else _exponent(c) for c in row]
-                              for row in table[1:]]
+        modes = [name.strip() == "mode" for name in table[0]]   # a mode is a name, not a number
+        table = [table[0]] + [[f" {c} " if how == "spaces" else c if mode else _exponent(c)
+                               for c, mode in zip(row, modes)] for row in table[1:]]
     text = to_csv(table, quoting=csv.QUOTE_ALL) if how == "quoted" else to_csv(table)
     text = {"bom": "\ufeff" + text, "crlf": text.replace("\n", "\r\n"),
             "blank-lines": text.replace("\n", "\n\n", 2) + "\n, ,\n",

@@ -29,6 +29,7 @@ import csv
 import math
 import os
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -90,7 +91,10 @@ def read_efficiency_table(name: str, folder: Path | None, path: str) -> Efficien
     except UsageError as error:
         raise ModelError(error.message, path) from None
     del data
-    lines, speed, torque, eta = _read_rows(text, name, path)
+    try:
+        lines, speed, torque, eta = _read_rows(text, name, path)
+    except csv.Error as error:      # a cell over the csv module's field limit, say
+        raise ModelError(f"cannot read the efficiency map {name!r}: {error}", path) from None
     _check(lines, speed, torque, eta, name, path)
     return _grid(lines, speed, torque, eta, name, path)
 
@@ -144,8 +148,10 @@ def _plain_table(lines) -> np.ndarray | None:
     """The rows as a table of finite numbers three wide, read by numpy, or None where
     numpy cannot read them so (the rows are then read one by one)."""
     try:
-        table = np.loadtxt(lines, delimiter=",", quotechar='"', dtype=float, ndmin=2,
-                           max_rows=MAX_ROWS + 1)
+        with warnings.catch_warnings():        # "input contained no data": said later
+            warnings.simplefilter("ignore")
+            table = np.loadtxt(lines, delimiter=",", quotechar='"', dtype=float, ndmin=2,
+                               max_rows=MAX_ROWS + 1)
     except ValueError:
         return None
     return table if table.shape[1] == 3 and np.isfinite(table).all() else None

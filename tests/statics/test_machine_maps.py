@@ -360,3 +360,18 @@ def test_issue34_a_map_with_windows_or_old_mac_line_ends_is_the_same_map(tmp_pat
     text = (tmp_path / "mg.csv").read_text()
     (tmp_path / "mg.csv").write_bytes(text.replace("\n", end).encode())
     assert load_device(tmp_path).ports[1].efficiency == plain
+
+
+def test_issue34_a_map_of_only_its_header_is_refused_without_a_warning(tmp_path) -> None:
+    """numpy's parser warns of a file with no data; the map says what is missing."""
+    import warnings
+
+    (tmp_path / "mg.csv").write_text(HEADER)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert "at least two speeds and two torques" in refused(tmp_path)
+
+
+def test_issue34_a_cell_over_the_csv_field_limit_is_refused(tmp_path) -> None:
+    (tmp_path / "mg.csv").write_text(HEADER + "0,0," + "9" * 200_000 + "\n")
+    assert "field larger than field limit" in refused(tmp_path)
