@@ -154,7 +154,7 @@ def test_random_mutations_of_library_models_never_crash(data, tmp_path_factory) 
     for command in ("check", "solve"):
         start = time.perf_counter()
         status, _, err = run(command, str(path))
-        assert time.perf_counter() - start < 1.0, (command, text)
+        assert time.perf_counter() - start < 5.0, (command, text)   # a hang, not a speed
         if status != 0:
             assert_one_error_line(status, err, expected=status)
             assert status == 2, err
