@@ -77,6 +77,9 @@ def assert_sweep_is_the_solve(swept, single, rel: float = REL) -> None:
 @pytest.mark.parametrize("path", MODELS, ids=[p.name for p in MODELS])
 def test_every_model_file(path: Path) -> None:
     model = load_model(path)
+    if model.shift_elements:     # its modes: test_every_mode_every_evaluator
+        assert "default-state" in {w.code for w in pg.solve(model).warnings}
+        return
     single = pg.solve(model)
     assert_conservation(single)
     if model.buses:                         # machines on buses: the sweep refuses them
@@ -204,3 +207,129 @@ def test_long_chains(n: int, eta: float) -> None:
     assert single.efficiency == pytest.approx(expected, rel=1e-9)
     swept = sweep(model, {"links.*.efficiency": [eta]}, backend="numeric", quiet=True)
     assert_sweep_is_the_solve(swept, single, rel=1e-9)
+
+
+# --- every mode of every bundled transmission, forward and coasting ----------------------
+#
+# One operating state, every evaluator: the case's own answer (``solve --mode M
+# [--backdrive]``), the gear table's row, a duty-cycle row at the same point, a one-variant
+# sweep in the mode and the closed form of ``formula --mode`` give the same efficiency and
+# verdict. Coasting is the back-driven case (the output fed the power the forward solve
+# takes in); the cycle row, the sweep and the formula reach the same physical point with
+# the ports as declared: the input at its speed, giving out the power the back-driven
+# solve delivers there (a negative input power).
+
+TRANSMISSIONS = [p for p in MODELS if "modes" in load_model(p).__dict__ and load_model(p).modes]
+
+
+def _mode_cases():
+    for path in TRANSMISSIONS:
+        for mode in load_model(path).modes:
+            for backdrive in (False, True):
+                yield pytest.param(path, mode, backdrive,
+                                   id=f"{path.stem}-{mode}-{'coast' if backdrive else 'fwd'}")
+
+
+def _at_input(model, speed: float, power: float):
+    """``model`` with its input at ``speed`` (rad/s) giving ``power`` (W) into the train."""
+    return model.with_port(model.inputs[0].index, speed=speed, power=power, torque=None)
+
+
+def _same_point(model, point):
+    """The model as declared at the physical point of ``point`` (forward or coasting)."""
+    if not point.case.backdrive:
+        return model
+    back = point.result
+    old_input = model.inputs[0].component
+    speed = back.kinematics.speed(old_input)
+    delivered = next(p.power for p in back.ports if p.component == old_input)
+    return _at_input(model, speed, delivered)
+
+
+def _cycle_row(model, mode: str, variant):
+    import io
+
+    from powergraph.analyses.cycle import cycle
+
+    port = model.inputs[0]
+    given = variant.inputs[0]
+    text = (f"mode,{port.component}.speed [rad/s],{port.component}.power [W],duration [s]\n"
+            f"{mode},{given.speed!r},{given.power!r},1\n")
+    return cycle(model, io.StringIO(text), keep_going=True)
+
+
+def _assert_same(efficiency, verdict, expected_efficiency, expected_verdict, who: str):
+    assert verdict == expected_verdict, who
+    if expected_efficiency is None:
+        assert efficiency is None or np.isnan(efficiency), who
+    else:
+        assert efficiency == pytest.approx(expected_efficiency, rel=1e-9, abs=1e-12), who
+        assert efficiency <= 1.0, who
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path, mode, backdrive", list(_mode_cases()))
+def test_every_mode_every_evaluator(path: Path, mode: str, backdrive: bool) -> None:
+    from powergraph.analyses.formula import derive_formulas
+    from powergraph.analyses.gear_table import gear_table
+    from powergraph.statics.case import TrainCase
+
+    model = load_model(path)
+    point = TrainCase.of(model, mode, backdrive).point()
+    if point.result is None:       # e.g. first gear coasting through its freewheel
+        row = {r.mode: r for r in gear_table(model).rows}[mode]
+        assert (row.coast_verdict if backdrive else row.verdict) == point.verdict
+        return
+    assert_conservation(point.result)
+    expected = (point.result.efficiency, point.verdict)
+    assert point.result.efficiency is None or point.result.efficiency <= 1.0
+
+    row = {r.mode: r for r in gear_table(model).rows}[mode]
+    _assert_same(row.coast_efficiency if backdrive else row.efficiency,
+                 row.coast_verdict if backdrive else row.verdict, *expected, "gear table")
+
+    variant = _same_point(model, point)
+    again = TrainCase.of(variant, mode).point()
+    assert_conservation(again.result)
+    _assert_same(again.result.efficiency, again.verdict, *expected, "the same point declared")
+
+    cycled = _cycle_row(model, mode, variant)
+    _assert_same(cycled.rows[0].efficiency, cycled.rows[0].verdict, *expected, "cycle row")
+
+    given = variant.inputs[0]
+    swept = sweep(model, {f"ports.{given.index}.power": [given.power]}, mode=mode, quiet=True)
+    self_locking = bool(swept.self_locking.flat[0])
+    swept_verdict = ("locked" if STATUS[swept.status.flat[0]] == "locked" else
+                     "self-locking" if self_locking else "ok")
+    _assert_same(float(swept.efficiency.flat[0]), swept_verdict, *expected, "sweep")
+
+    if expected[1] == "ok":
+        formula = derive_formulas(variant, mode=mode)
+        assert formula.evaluate()["efficiency"] == pytest.approx(expected[0], rel=1e-9)
+        assert formula.numeric["efficiency"] == pytest.approx(expected[0], rel=1e-12)
+        kinds = {c.kind for c in formula.conditions}
+        if point.moded.freewheels and any(s in ("holding", "overrunning")
+                                          for s in point.moded.freewheels.values()):
+            assert "freewheel" in kinds
+
+
+def test_simpson_first_gear_coasting_is_refused_by_every_evaluator() -> None:
+    """First gear drives through F1, which overruns when the output drives: coasting
+    has no consistent state (docs/modes.md). ``solve --backdrive`` says so, the gear
+    table says so, and a sweep or cycle row at a negative input power flags it too."""
+    from powergraph.analyses.gear_table import gear_table
+    from powergraph.statics.case import TrainCase
+
+    model = load_model(MODELS[0].parent / "simpson_3speed.yaml")
+    point = TrainCase.of(model, "1", backdrive=True).point()
+    assert point.result is None and point.verdict.startswith("no consistent freewheel state")
+    assert gear_table(model).rows[0].coast_verdict == point.verdict
+    swept = sweep(model, {"ports.0.power": [-20e3, 20e3]}, mode="1", quiet=True)
+    assert [STATUS[s] for s in swept.status] == ["no-freewheel-state", "ok"]
+    assert np.isnan(swept.efficiency[0])
+    forward = TrainCase.of(model, "1").point().result
+    assert swept.efficiency[1] == pytest.approx(forward.efficiency, rel=1e-12)
+    from powergraph.errors import UsageError
+
+    with pytest.raises(UsageError, match="row 2: mode 1: no consistent freewheel state"):
+        _cycle_row(model, "1", _at_input(model, 2500 * np.pi / 30, -20e3))

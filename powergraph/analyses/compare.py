@@ -1,8 +1,8 @@
 """Side-by-side comparison of trains: ratio, efficiency both ways, circulation, rolling.
 
-Each row is computed from single solves (``powergraph.solve``) of the model and of the
-same model driven from its output (:func:`powergraph.kinematics.backdriven`), so a row
-always matches ``powergraph solve`` exactly.
+Each row is the answer of the train's case (:class:`powergraph.statics.case.TrainCase`),
+forward and driven from its output, so a row always matches ``powergraph solve [--mode M]
+[--backdrive]`` exactly.
 
 Examples
 --------
@@ -19,12 +19,11 @@ from dataclasses import asdict
 from typing import Any, Iterable, Iterator
 
 from powergraph.errors import PowerGraphError
-from powergraph.kinematics import backdriven
 from powergraph.model.spec import Model
 from powergraph.format import (POWER_UNITS, VOLUME_UNITS, aligned_table, format_column,
                                format_fixed, format_number, format_ratio)
 from powergraph.records import record
-from powergraph.statics import solve
+from powergraph.statics.case import TrainCase
 from powergraph.display import Displayed
 
 #: Text-table columns: (row attribute, header, how a cell is written). A header with
@@ -166,14 +165,19 @@ def compare_models(models: Iterable[Model], mesh_efficiency: float | None = None
     return ComparisonTable(tuple(rows))
 
 
-def compare_row(model: Model) -> ComparisonRow:
-    """The figures of merit of one model (see :class:`ComparisonRow`)."""
-    forward = solve(model)
-    back, note = _backdrive(model, forward.input_power)
+def compare_row(model: Model, mode: str | None = None) -> ComparisonRow:
+    """The figures of merit of one model, in ``mode`` for a model with modes (see
+    :class:`ComparisonRow`): the case forward and back-driven
+    (:class:`~powergraph.statics.case.TrainCase`), each with its freewheels decided, so a
+    row matches ``powergraph solve [--mode M] [--backdrive]``."""
+    case = TrainCase.of(model, mode)
+    forward = case.point().required().result
+    back, note = _backdrive(model, mode)
     largest = max((e.carrier_frame_power for e in forward.meshes), default=0.0)
     volume, density = _volume(model, forward.output_power)
     return ComparisonRow(
-        name=model.name, source=model.source, dof=forward.dof, ratio=forward.ratio,
+        name=forward.model.name if mode is not None else model.name, source=model.source,
+        dof=forward.dof, ratio=forward.ratio,
         efficiency=forward.efficiency, self_locking=forward.self_locking,
         backdrive_efficiency=back.efficiency if back is not None else None,
         backdrive_self_locking=back.self_locking if back is not None else None,
@@ -190,15 +194,18 @@ def _finite(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _backdrive(model: Model, power: float) -> tuple[Any, str | None]:
-    """The back-driven solve at the forward input power (None with a note when not
-    defined or not solvable)."""
+def _backdrive(model: Model, mode: str | None) -> tuple[Any, str | None]:
+    """The case back-driven at the forward input power (None with a note when not defined
+    or not solvable)."""
     if len(model.inputs) != 1 or len(model.outputs) != 1:
         return None, "back-driving needs one input and one output"
     try:
-        result = solve(backdriven(model, power))
+        point = TrainCase.of(model, mode, backdrive=True).point()
     except PowerGraphError as exc:
         return None, str(exc)
+    if point.result is None:
+        return None, f"coasting: {point.verdict}"
+    result = point.result
     return result, f"locks: {result.lock.reason}" if result.lock is not None else None
 
 

@@ -13,6 +13,7 @@ from powergraph.analyses.cycle_columns import LOCKED, NO_POWER, OK, SELF_LOCKING
 from powergraph.analyses.cycle_points import Points, as_dict
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
+from powergraph.statics.case import verdict_of
 
 #: Errors of a numerical procedure (numpy's warnings are errors under the command line).
 NUMERICAL = (FloatingPointError, OverflowError, RuntimeWarning)
@@ -156,9 +157,7 @@ def _single_row(base: Model, points: Points, i: int, keep_going: bool,
         if not keep_going:
             raise refused(points, i, verdict)
         return
-    verdict = ("locked" if result.lock is not None else
-               "self-locking" if result.self_locking else
-               "no power" if result.efficiency is None else "ok")
+    verdict = verdict_of(result)
     columns.set(i, power_in, power_out, result.total_loss, result.efficiency, verdict,
                 solve_losses(result),
                 electrical_share=electrical_share(result) if result.machines else None,
@@ -167,17 +166,14 @@ def _single_row(base: Model, points: Points, i: int, keep_going: bool,
 
 
 def _solve(model: Model, mode: str | None):
-    """The single solve of one row: in its mode, the freewheels decided
-    (:func:`~powergraph.statics.modes.solve_mode`), when the model has shift elements."""
-    from powergraph.statics import solve
-    from powergraph.statics.modes import solve_mode
+    """The single solve of one row: the row's case (its mode, the freewheels decided at
+    the row's load: :class:`~powergraph.statics.case.TrainCase`)."""
+    from powergraph.statics.case import TrainCase
 
-    if mode is None and not model.shift_elements:
-        return solve(model)
-    moded = solve_mode(model, mode)
-    if moded.result is None:
-        raise ModelError(f"mode {mode}: {moded.verdict}" if mode else moded.verdict)
-    return moded.result
+    point = TrainCase.of(model, mode).point()
+    if point.result is None:
+        raise ModelError(f"mode {mode}: {point.verdict}" if mode else point.verdict)
+    return point.result
 
 
 def _own_warnings(result) -> tuple[str, ...]:

@@ -34,6 +34,7 @@ from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
+from powergraph.statics.case import TrainCase
 from powergraph.statics.friction import friction_meshes
 from powergraph.statics.ports import flow_efficiency_of_roles
 from powergraph.units_si import RAD_S_PER_RPM
@@ -132,7 +133,7 @@ class EfficiencyMap(Displayed):
 
 
 def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[float],
-                   rated_torque: float | None = None) -> EfficiencyMap:
+                   rated_torque: float | None = None, mode: str | None = None) -> EfficiencyMap:
     """Solve ``model`` over output torque × input speed.
 
     Parameters
@@ -145,6 +146,10 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
         Input speeds, rpm (non-zero).
     rated_torque : float, optional
         Drawn as a line on the map.
+    mode : str, optional
+        The mode of a model with modes. A mode whose freewheels are decided at each
+        operating point is solved point by point as its case
+        (:class:`~powergraph.statics.case.TrainCase`), as ``solve --mode`` would.
 
     Returns
     -------
@@ -155,6 +160,10 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
         raise UsageError("an efficiency map needs one input and one output port")
     if np.any(speeds == 0.0):
         raise UsageError("input speeds must be non-zero")
+    case = TrainCase.of(model, mode)
+    if case.decides_freewheels:
+        return _case_map(case, torques, speeds, rated_torque)
+    model = case.gear_model
     dependent = any(f.load_dependent for f in friction_meshes(model).values())
     sense = np.sign(solve_speeds(model).ratio or 1.0)
     if dependent:
@@ -175,6 +184,27 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
                          load_dependent=model.has_bearing_losses, input_power=power)
+
+
+def _case_map(case: TrainCase, torques: np.ndarray, speeds: np.ndarray,
+              rated_torque: float | None) -> EfficiencyMap:
+    """The map of a mode whose freewheels depend on the load: every point the case's own
+    answer (NaN where no freewheel state is consistent)."""
+    sense = np.sign(case.point().required().result.ratio or 1.0)
+    values = np.full((speeds.size, torques.size), np.nan)
+    power = np.full_like(values, np.nan)
+    for i, speed in enumerate(speeds):
+        for j, torque in enumerate(torques):
+            point = case.point(_at(case.model, speed * RAD_S_PER_RPM, torque, sense))
+            if point.ok:
+                values[i, j], power[i, j] = _eta(point.result), point.result.input_power
+    failed = np.isnan(power)
+    return EfficiencyMap(name=case.plain_model().name, torques=torques, speeds_rpm=speeds,
+                         efficiency=values, rated_torque=rated_torque,
+                         load_dependent=case.model.has_bearing_losses, input_power=power,
+                         unconverged=tuple((float(speeds[i]), float(torques[j]))
+                                           for i, j in zip(*np.nonzero(failed))),
+                         single_solves=int(values.size))
 
 
 def _dependent_map(model: Model, torques: np.ndarray, speeds: np.ndarray,

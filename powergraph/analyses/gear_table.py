@@ -17,10 +17,9 @@ from dataclasses import field
 from types import MappingProxyType
 from typing import Any, Mapping
 
-from powergraph.kinematics.variants import backdriven
 from powergraph.model.spec import Model
 from powergraph.records import record
-from powergraph.statics.modes import ModeResult, solve_mode
+from powergraph.statics.case import CasePoint, TrainCase
 
 
 @record
@@ -121,51 +120,36 @@ def gear_table(model: Model, solve: Any = None) -> GearTable:
 
 
 def _row(model: Model, mode: str, solve: Any) -> GearRow:
-    forward = solve_mode(model, mode, solve)
-    if forward.result is None:
-        from powergraph.errors import ModelError
-
-        raise ModelError(forward.verdict, f"modes.{mode}")
-    result = forward.result
+    forward = TrainCase.of(model, mode).point()
+    forward.required()
+    result, moded = forward.result, forward.moded
     w_in = result.kinematics.speed(model.inputs[0].component)
     t_in = result.external_torques[result.model.body_of[model.inputs[0].component]]
     w_in = _unless_zero(w_in, result.kinematics.body_speeds.values())
     t_in = _unless_zero(t_in, result.external_torques.values())
-    coast_efficiency, coast_verdict = _coast(model, forward, solve)
+    coast_efficiency, coast_verdict = _coast(model, forward)
     torques = {e.name: (None if e.torque is None or t_in is None else e.torque / t_in)
-               for e in forward.elements if e.engaged}
+               for e in moded.elements if e.engaged}
     slips = {e.name: None if w_in is None else e.slip_speed / w_in
-             for e in forward.elements if not e.engaged}
-    return GearRow(mode=mode, engaged=forward.engaged, ratio=result.ratio, step=None,
+             for e in moded.elements if not e.engaged}
+    return GearRow(mode=mode, engaged=moded.engaged, ratio=result.ratio, step=None,
                    efficiency=result.efficiency, coast_efficiency=coast_efficiency,
                    coast_verdict=coast_verdict, torques=MappingProxyType(torques),
                    slips=MappingProxyType(slips),
-                   drag_loss=sum(e.drag_loss for e in forward.elements),
-                   freewheels=forward.freewheels,
-                   verdict=(forward.verdict if result.efficiency_note is None
-                            else _no_power(forward.verdict)),
-                   warnings=forward.warnings, input_torque=t_in, input_speed=w_in)
+                   drag_loss=sum(e.drag_loss for e in moded.elements),
+                   freewheels=moded.freewheels, verdict=forward.verdict,
+                   warnings=moded.warnings, input_torque=t_in, input_speed=w_in)
 
 
-#: The verdict of a mode through which no power passes (the solver's efficiency None).
-NO_POWER = "no power passes (the efficiency is undefined)"
-
-
-def _coast(model: Model, forward: ModeResult, solve: Any) -> tuple[float | None, str]:
-    """Coasting's efficiency and verdict; not solved when no power passes forward (the
-    input's power, zero, is what coasting feeds in at the output)."""
+def _coast(model: Model, forward: CasePoint) -> tuple[float | None, str]:
+    """Coasting's efficiency and verdict (the case back-driven); not solved when no power
+    passes forward (the input's power, zero, is what coasting feeds in at the output)."""
     if forward.result.efficiency_note is not None:
-        return None, NO_POWER
-    coast = coasting(model, forward, solve)
-    if coast.result is None:
+        return None, forward.verdict
+    coast = TrainCase.of(model, forward.case.mode, backdrive=True).point()
+    if coast.result is None or coast.result.efficiency_note is not None:
         return None, coast.verdict
-    if coast.result.efficiency_note is not None:
-        return None, _no_power(coast.verdict)
     return coast.result.efficiency, coast.verdict
-
-
-def _no_power(verdict: str) -> str:
-    return NO_POWER if verdict == "ok" else f"{verdict}; {NO_POWER}"
 
 
 def _unless_zero(value: float, among) -> float | None:
@@ -173,10 +157,3 @@ def _unless_zero(value: float, among) -> float | None:
     it are undefined)."""
     scale = max((abs(v) for v in among), default=0.0)
     return None if abs(value) <= 1e-9 * scale else float(value)
-
-
-def coasting(model: Model, forward: ModeResult, solve: Any = None) -> ModeResult:
-    """The mode back-driven (the output drives, same motion and power: coasting), with its
-    freewheels decided again."""
-    ports = backdriven(forward.result.model).ports
-    return solve_mode(dataclasses.replace(model, ports=ports), forward.mode, solve)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from powergraph.result import aligned_table
+from powergraph.statics.verdicts import MEANINGS
 
 
 def gear_table_report(table) -> str:
@@ -25,9 +26,13 @@ def gear_table_report(table) -> str:
         grid.append([r.mode, *(_cell(r, n) for n in names)])
     lines += aligned_table(grid, set(range(1, len(names) + 1)))
     coast = [f"  {r.mode}: {r.coast_verdict}" for r in table.rows
-             if r.coast_efficiency is None and r.efficiency is not None]
+             if r.coast_verdict != "ok" and r.efficiency is not None]
     if coast:
-        lines += ["", "coasting:", *coast]
+        lines += ["", "coasting (back-driven) verdicts:", *coast]
+    used = {v for r in table.rows for v in (r.verdict, r.coast_verdict)}
+    legend = [f"  {v}: {MEANINGS[v]}" for v in MEANINGS if v in used]
+    if legend:
+        lines += ["", "verdicts:", *legend]
     lines += [f"warning: {w}" for w in table.warnings]
     return "\n".join(lines)
 

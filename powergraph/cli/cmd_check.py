@@ -56,11 +56,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _check_modes(args: argparse.Namespace, model) -> int:
     """A model with modes: every mode must solve (docs/modes.md)."""
-    from powergraph.cli.cmd_modes import solve_one_mode
+    from powergraph.statics.case import TrainCase
     from powergraph.statics.modes import designed_dof
 
     for mode in model.modes:
-        solve_one_mode(model, mode)
+        TrainCase.of(model, mode).point().required()
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.shift_elements)} shift elements, modes {', '.join(model.modes)}: "
           f"each solves with {designed_dof(model)} DOF")

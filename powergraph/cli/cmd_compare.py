@@ -5,11 +5,13 @@ import argparse
 
 from powergraph.cli.common import (
     check_figure_path,
+    load,
     new_axes,
     print_json,
     save_figure,
     say_wrote,
 )
+from powergraph.errors import UsageError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -32,10 +34,8 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.compare import ComparisonTable, compare_row
 
     target = check_figure_path(args.output) if args.output else None
-    from powergraph.cli.cmd_modes import compare_row_of
-
-    table = ComparisonTable(tuple(compare_row_of(path, args.mesh_efficiency, compare_row)
-                                  for path in args.models))
+    table = ComparisonTable(tuple(compare_row(*_model_and_mode(text, args.mesh_efficiency))
+                                  for text in args.models))
     if args.json:
         print_json(table.to_dict()["rows"])
     else:
@@ -45,3 +45,18 @@ def run(args: argparse.Namespace) -> int:
         save_figure(ax.figure, target, bbox_inches="tight")
         say_wrote(target, data_on_stdout=args.json)
     return 0
+
+
+def _model_and_mode(text: str, mesh_efficiency):
+    """``MODEL`` or ``MODEL:MODE`` (a file name with a colon is taken whole when it
+    exists): the loaded model and the mode (None)."""
+    import os
+
+    path, mode = text, None
+    if not os.path.exists(text) and ":" in text:     # False, not an error, for any name
+        path, mode = text.rsplit(":", 1)
+    model = load(path, mesh_efficiency)
+    if model.modes and mode is None:
+        raise UsageError(f"{text}: the model has modes " + ", ".join(model.modes)
+                         + ": write MODEL:MODE")
+    return model, mode

@@ -4,6 +4,7 @@ Two forms::
 
     powergraph cycloid --module M --teeth Z1 --error D [--shift X] [--rc RC] [--json] [--plot FILE]
     powergraph cycloid --fit --module M [--shift X] [--rc RC] [--json] [--plot FILE]
+    powergraph cycloid --model MODEL [--json]     (a train's meshes with a cycloid block)
 
 matplotlib is imported only when ``--plot`` is given.
 """
@@ -33,7 +34,10 @@ def register(subparsers) -> None:
                     "profile is off by D mm along its normal (Csobán 2021). With --fit, "
                     "repeat the paper's study for one module and refit "
                     "a*d + b*d*z1^-1.5.")
-    parser.add_argument("--module", required=True, metavar="M",
+    parser.add_argument("--model", metavar="MODEL",
+                        help="a model file: carry the fluctuation of each mesh with a "
+                             "`cycloid` block to the train's output")
+    parser.add_argument("--module", metavar="M",
                         help=f"module, mm ({MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g})")
     parser.add_argument("--teeth", metavar="Z1", help="disc teeth z1 (>= 3)")
     parser.add_argument("--error", metavar="D", help="profile error d, mm (>= 0)")
@@ -52,6 +56,10 @@ def register(subparsers) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute, print, and draw if asked. Bad arguments raise :class:`UsageError`."""
+    if args.model is not None:
+        return _of_model(args)
+    if args.module is None:
+        raise UsageError("give --module M (with --teeth and --error, or --fit), or --model FILE")
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
     module = number_option(args.module, "--module", *MODULE_RANGE)
     shift = number_option(args.shift, "--shift", *SHIFT_RANGE, below=True)
@@ -85,4 +93,21 @@ def run(args: argparse.Namespace) -> int:
         print(result.text_report())
     if figure is not None:
         say_wrote(figure, data_on_stdout=args.json)
+    return 0
+
+
+def _of_model(args: argparse.Namespace) -> int:
+    """``--model FILE``: the train's output fluctuation (the stage values from the file)."""
+    given = [f"--{n}" for n in ("module", "teeth", "error", "plot") if getattr(args, n)]
+    if given or args.fit:
+        raise UsageError(f"--model takes the stages from the file: give no "
+                         f"{', '.join(given) or '--fit'}")
+    from powergraph.analyses.cycloid import train_fluctuation
+    from powergraph.cli.common import load
+
+    model = load(args.model)
+    if not any("cycloid" in link.blocks for link in model.meshes):
+        raise UsageError(f"{args.model}: no mesh has a cycloid block (docs/cycloid.md)")
+    result = train_fluctuation(model)
+    print_json(result.to_dict()) if args.json else print(result.text_report())
     return 0

@@ -11,6 +11,7 @@ import argparse
 
 from powergraph.cli.common import (check_figure_path, load, new_figure,
                                    number_option, save_figure, say_wrote)
+from powergraph.errors import UsageError
 
 METHODS = ("virtual-power", "wang2021")
 DPI_RANGE = (10, 1200)
@@ -45,10 +46,12 @@ def run(args: argparse.Namespace) -> int:
     target = check_figure_path(args.output)
     dpi = number_option(args.dpi, "--dpi", *DPI_RANGE)  # a huge figure exhausts memory
     model = load(args.model, args.mesh_efficiency)
-    if model.modes or args.mode is not None:
-        from powergraph.cli.cmd_modes import solve_one_mode
+    if model.modes or model.shift_elements or args.mode is not None:
+        from powergraph.statics.case import TrainCase
 
-        result = solve_one_mode(model, args.mode, args.method).result
+        if args.method != "virtual-power":
+            raise UsageError("--mode works with the virtual-power method")
+        result = TrainCase.of(model, args.mode).point().required().result
     elif args.method == "wang2021":
         from powergraph.methods.wang2021 import solve_wang2021
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from powergraph.cli.cmd_modes import add_mode_option
 from powergraph.cli.common import load, print_json
 from powergraph.errors import UsageError
 
@@ -25,6 +26,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                         help="substitute a relation between symbols before simplifying, "
                              "e.g. --let z_4=z_5-1 (one-tooth-difference cycloid stage); "
                              "repeatable; it must hold at the model's values")
+    add_mode_option(parser, "derive the formulas of")
     parser.set_defaults(handler=run)
 
 
@@ -51,7 +53,7 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.formula import derive_formulas
     from powergraph.analyses.formula.report import latex_report
 
-    result = derive_formulas(model, relations)
+    result = derive_formulas(model, relations, args.mode)
     if args.json:
         print_json(result.to_dict())
     elif args.latex:

@@ -26,14 +26,9 @@ def run(args: argparse.Namespace) -> int:
 
     target = check_figure_path(args.output) if args.output else None
     model = load(args.model)
-    if model.modes or args.mode is not None:
-        from powergraph.cli.cmd_modes import solve_one_mode
+    from powergraph.statics.case import TrainCase
 
-        result = solve_one_mode(model, args.mode).result
-    else:
-        from powergraph.statics import solve
-
-        result = solve(model)
+    result = TrainCase.of(model, args.mode).point().required().result
     diagram = lever_diagram(result.model, result.speeds, args.mode)
     print_json(diagram.to_dict()) if args.json else print(diagram.text_report())
     if target is not None:

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from powergraph.cli.cmd_modes import add_mode_option, gear_model
+from powergraph.cli.cmd_modes import add_mode_option
 from powergraph.cli.common import (check_figure_path, check_output_file, load,
                                    number_option, print_json, save_figure, say_wrote,
                                    whole_option, write_atomically)
@@ -76,8 +76,7 @@ def run(args: argparse.Namespace) -> int:
     speed = span_option(args.speed, "--speed", SPEED_LIMIT)
     rated = (None if args.rated is None
              else number_option(args.rated, "--rated", 0, TORQUE_LIMIT, above=True))
-    result = efficiency_map(gear_model(load(args.model), args.mode), torque, speed,
-                            rated)
+    result = efficiency_map(load(args.model), torque, speed, rated, mode=args.mode)
     print_json(result.to_dict()) if args.json else print(result.text_report())
     if target is not None:
         ax = result.plot()

@@ -40,56 +40,35 @@ def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
     if args.strict and model.warnings:
         return refuse_caveats(model.warnings)
-    if model.modes or args.mode is not None or _has_freewheels(model):
-        from powergraph.cli.cmd_modes import solve_one_mode
+    from powergraph.statics.case import TrainCase
 
-        result = solve_one_mode(model, args.mode, args.method)
-        print_json(result.to_dict()) if args.json else print(result.text_report())
-        return 0
-    if args.backdrive:
-        model = _backdriven(model)
+    case = TrainCase.of(model, args.mode, args.backdrive)
     if args.method == "wang2021":
-        from powergraph.methods.wang2021 import solve_wang2021
-
-        result = solve_wang2021(model)
+        result = _wang2021(case)
     else:
-        from powergraph.statics import solve
-
-        result = solve(model)
-    fluctuation = _cycloid_fluctuation(model)
+        result = case.point().required().report
     if args.json:
-        data = result.to_dict()
-        if fluctuation is not None:
-            data["cycloid_fluctuation"] = fluctuation.to_dict()
-        print_json(data)
+        print_json(result.to_dict())
     else:
         print(result.text_report())
-        if fluctuation is not None:
-            print()
-            print(fluctuation.text_report())
+        if any("cycloid" in link.blocks for link in model.meshes):
+            print(f"\nthe output's ratio fluctuation from the cycloid stages: "
+                  f"powergraph cycloid --model {args.model}")
     return 0
 
 
-def _backdriven(model):
-    """The model driven from its output at the forward input power (one input, one output)."""
+def _wang2021(case):
+    """The seed paper's method: a plain train, forward or back-driven."""
     from powergraph.errors import UsageError
-    from powergraph.kinematics.variants import backdriven
-    from powergraph.statics import solve
+    from powergraph.methods.wang2021 import solve_wang2021
+    from powergraph.statics.case import TrainCase
 
-    if len(model.inputs) != 1 or len(model.outputs) != 1:
-        raise UsageError("--backdrive needs a train with one input and one output port "
-                         f"(this one has {len(model.inputs)} and {len(model.outputs)})")
-    return backdriven(model, solve(model).input_power)
+    if case.shifting:
+        raise UsageError("--method wang2021 takes trains without shift elements; "
+                         "--mode works with the virtual-power method")
+    model = case.model
+    if case.backdrive:
+        from powergraph.kinematics.variants import backdriven
 
-
-def _has_freewheels(model) -> bool:
-    return any(e.kind == "freewheel" for e in model.shift_elements)
-
-
-def _cycloid_fluctuation(model):
-    """The output's ratio fluctuation from meshes carrying a ``cycloid`` block (docs/cycloid.md)."""
-    if not any("cycloid" in link.blocks for link in model.meshes):
-        return None
-    from powergraph.analyses.cycloid import train_fluctuation
-
-    return train_fluctuation(model)
+        model = backdriven(model, TrainCase.of(model).point().result.input_power)
+    return solve_wang2021(model)

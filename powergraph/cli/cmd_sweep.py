@@ -12,7 +12,7 @@ import argparse
 import io
 import sys
 
-from powergraph.cli.cmd_modes import add_mode_option, gear_model
+from powergraph.cli.cmd_modes import add_mode_option
 from powergraph.cli.common import (add_cluster_arguments, check_figure_path, check_output_file,
                                    cluster_options, load, new_figure, save_figure,
                                    say_wrote, write_atomically)
@@ -54,15 +54,15 @@ def run(args: argparse.Namespace) -> int:
     figure = check_figure_path(args.plot, "--plot") if args.plot else None
     if args.output:
         check_output_file(args.output, "-o")
-    model = gear_model(load(args.model, args.mesh_efficiency), args.mode)
+    model = load(args.model, args.mesh_efficiency)
     grid = cartesian(parse_sets(model, args.sets))
     cluster = cluster_options(args)
     if cluster["workers"] is None and cluster["scheduler"] is None:
-        result = compile_sweep(model, list(grid))(grid, quiet=args.quiet)
+        result = compile_sweep(model, list(grid), mode=args.mode)(grid, quiet=args.quiet)
     else:
         from powergraph.analyses.sweep.distributed import sweep_on_cluster
 
-        result = sweep_on_cluster(model, grid, **cluster)
+        result = sweep_on_cluster(model, grid, mode=args.mode, **cluster)
     if args.output:
         write_atomically(args.output, lambda tmp: result.to_csv(tmp, extra=args.all_columns))
     else:

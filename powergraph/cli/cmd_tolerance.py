@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.cmd_modes import add_mode_option, gear_model
+from powergraph.cli.cmd_modes import add_mode_option
 from powergraph.cli.common import (check_figure_path, load, print_json, say_wrote,
                                    save_figure, whole_option)
 from powergraph.errors import UsageError
@@ -64,7 +64,9 @@ def run(args: argparse.Namespace) -> int:
     seed = None if args.seed is None else whole_option(args.seed, "--seed", 0, MAX_SEED)
     sobol_samples = _sobol(args.sobol_samples)
     specs = [parse_spec(text) for text in args.spec]
-    model = gear_model(load(args.model), args.mode)
+    from powergraph.statics.case import TrainCase
+
+    model = TrainCase.of(load(args.model), args.mode).plain_model()
     progress = False if args.json else None   # None: a bar on a terminal, long runs
     result = tolerance_analysis(model, samples=samples, seed=seed, specs=specs,
                                 sobol_samples=sobol_samples, progress=progress)

@@ -77,7 +77,7 @@ def resolve(model: Model, mode: str | None,
         links[element.index] = as_link(element, element.name in names)
     bodies, body_of = bodies_of(model.components, tuple(links))
     derived = dataclasses.replace(model, links=tuple(links), bodies=bodies,
-                                  body_of=body_of, mode=mode,
+                                  body_of=body_of, mode=mode, resolved=True,
                                   name=model.name if mode is None else f"{model.name} [{mode}]")
     try:
         check_topology(derived)

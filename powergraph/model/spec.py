@@ -172,6 +172,10 @@ class Model:
     modes: Mapping[str, tuple[str, ...]] = field(default_factory=lambda: MappingProxyType({}))
     #: The mode this model was resolved in (powergraph.model.modes.resolve), else None.
     mode: str | None = None
+    #: True when its shift elements' states were set for one operating point
+    #: (powergraph.model.modes.resolve); False for a loaded model in its default state
+    #: (the first mode, freewheels as loaded), whose solve says so in a warning.
+    resolved: bool = field(default=False, compare=False)
     #: ``{name: Bus}`` electrical buses of the machine ports; empty without machines.
     buses: Mapping[str, "Bus"] = field(default_factory=lambda: MappingProxyType({}))
 

@@ -38,6 +38,7 @@ from powergraph.records import record
 from powergraph.statics.bearings import relative_speed
 from powergraph.statics.freewheels import ZERO, candidates, describe, settle
 from powergraph.statics.shift_torques import component_torques, joint_torque
+from powergraph.statics.verdicts import combined, verdict_of
 
 #: At most this many freewheel groups (freewheels joining the same two bodies count once)
 #: are left to decide in one mode; more is refused (the search may grow as 2**n).
@@ -224,7 +225,8 @@ def _finish(model, mode, engaged, result, states, verdict, path, caveats=()) -> 
                   if model.shift_element(n).kind == "freewheel"}
     return ModeResult(model=model, mode=mode, engaged=engaged, result=result,
                       elements=tuple(states.values()),
-                      freewheels=MappingProxyType(freewheels), verdict=verdict,
+                      freewheels=MappingProxyType(freewheels),
+                      verdict=combined(verdict_of(result), verdict),
                       warnings=tuple(warnings))
 
 

@@ -114,7 +114,23 @@ def flow_efficiency(powers: Iterable[float]) -> float | None:
     leaving = -sum(p for p in powers if p < 0)
     if entering == 0.0:
         return None if leaving == 0.0 else float("inf")
-    return leaving / entering
+    return capped(leaving / entering)
+
+
+#: An efficiency above 1 by no more than this is round-off (a lossless gear's torques
+#: rounded differently), reported as 1; beyond it, it is left for the checks to catch.
+ROUND_OFF = 1e-9
+
+
+def capped(efficiency):
+    """``efficiency`` (a float or an array) with round-off above 1 taken back to 1.
+
+    >>> capped(1.0000000000000002), capped(0.97)
+    (1.0, 0.97)
+    """
+    if isinstance(efficiency, np.ndarray):
+        return np.where((efficiency > 1.0) & (efficiency <= 1.0 + ROUND_OFF), 1.0, efficiency)
+    return 1.0 if 1.0 < efficiency <= 1.0 + ROUND_OFF else efficiency
 
 
 def flow_efficiency_of_roles(input_power: np.ndarray, output_power: np.ndarray
@@ -132,7 +148,7 @@ def flow_efficiency_of_roles(input_power: np.ndarray, output_power: np.ndarray
     entering = np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)
     leaving = np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        eta = leaving / entering
+        eta = capped(leaving / entering)
     return np.where(entering > 0, eta, np.where(leaving > 0, np.inf, np.nan))
 
 
@@ -148,7 +164,8 @@ def flow_efficiency_point(input_power: float, output_power: float) -> float:
     entering = nan_max(p_in, 0.0) + nan_max(p_out, 0.0)
     leaving = nan_max(-p_in, 0.0) + nan_max(-p_out, 0.0)
     if entering > 0.0:
-        return leaving / entering
+        eta = leaving / entering
+        return 1.0 if 1.0 < eta <= 1.0 + ROUND_OFF else eta
     return np.inf if leaving > 0.0 else np.nan
 
 
@@ -173,7 +190,23 @@ def result_caveats(result: "PowerFlowResult") -> tuple[Caveat, ...]:
             caveats.append(_output_drives(flow, given))
         elif flow.reversed:
             caveats.append(_role_reversed(flow))
+    if result.model.shift_elements and not result.model.resolved:
+        caveats.append(_default_state(result.model))
     return tuple(caveats)
+
+
+def _default_state(model) -> Caveat:
+    """A loaded model with shift elements solved as it was loaded: no operating state was
+    decided for this load."""
+    held = [e.name for e in model.shift_elements
+            if e.kind == "freewheel" and model.links[e.index].type == "fixed"]
+    mode = f"mode {model.mode}, " if model.mode is not None else ""
+    state = f"freewheels as loaded: {', '.join(held)} holding" if held else \
+        "its freewheels as loaded"
+    return Caveat(f"solved in the model's default state ({mode}{state}), not an operating "
+                  "state decided for this load: solve its case (powergraph solve --mode "
+                  "NAME, or TrainCase.of(model, mode).point()), which decides the freewheels",
+                  "modes" if model.modes else "links", "default-state")
 
 
 def _output_drives(flow: PortFlow, given: float) -> Caveat:

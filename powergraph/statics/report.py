@@ -9,6 +9,7 @@ from powergraph.format import column, power_unit, ratio_text, table
 from powergraph.statics.machine_report import (boundary_powers, machine_dict, machine_lines,
                                              machine_losses)
 from powergraph.statics.result import PowerFlowResult
+from powergraph.statics.verdicts import verdict_of
 from powergraph.units_si import RPM_PER_RAD_S
 
 
@@ -45,6 +46,7 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "flows": [f.to_dict() for f in result.flows()],
         "circulating_power": result.circulating_power,
         "self_locking": result.self_locking,
+        "verdict": verdict_of(result),
         "formal_efficiency": _finite(result.formal_efficiency),
         "efficiency_note": result.efficiency_note,
         "ports": [p.to_dict(raw) for p in result.ports],

@@ -13,6 +13,7 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
+from powergraph.errors import UsageError
 from powergraph.model.spec import Model
 from powergraph.model.validate import check_port_ranges
 from powergraph.statics.directions import (
@@ -52,6 +53,10 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     ------
     ModelError
         (KinematicsError, StaticsError) when speeds or loads are not determined.
+    UsageError
+        A model with a modes table, not in one of its modes: solve its case,
+        ``TrainCase.of(model, mode).point()`` (:mod:`powergraph.statics.case`), which
+        decides its freewheels too.
 
     A train that cannot move as asked under its loads is not an error: the result has
     ``lock`` set, the train at rest and efficiency 0 (docs/locking.md).
@@ -69,6 +74,10 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     (0.98, -2.0, 20.0)
     """
     if extra_torques is None:
+        if model.modes and model.mode is None:
+            raise UsageError("the model has modes " + ", ".join(model.modes) + ": solve it "
+                             "in one, TrainCase.of(model, mode).point() (or powergraph solve "
+                             "--mode NAME)")
         check_port_ranges(model, speeds)
     if model.buses and extra_torques is None:
         from powergraph.statics.machines import solve_machines

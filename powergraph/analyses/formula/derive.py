@@ -15,6 +15,7 @@ from typing import Any, Mapping
 
 import sympy as sp
 
+from powergraph.analyses.formula.freewheels import freewheel_conditions
 from powergraph.analyses.formula.readable import orient, readable, sign_factors
 from powergraph.analyses.formula.result import Condition, Direction, FormulaResult
 from powergraph.analyses.formula.symbols import SymbolTable, build_symbols
@@ -22,18 +23,29 @@ from powergraph.analyses.formula.systems import TrainSystems, solve_linear, trai
 from powergraph.errors import MethodNotApplicableError
 from powergraph.kinematics import Element, elements_of
 from powergraph.model.spec import Model
-from powergraph.statics import PowerFlowResult, solve
+from powergraph.statics import PowerFlowResult
+from powergraph.statics.case import TrainCase
 from powergraph.statics.directions import factor_of
 from powergraph.statics.friction import loss_block_places
 
 
-def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) -> FormulaResult:
+def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None,
+                    mode: str | None = None) -> FormulaResult:
     """Closed-form ratio and efficiency of a one-input, one-output, 1-DOF train.
+
+    The efficiency is the one :func:`powergraph.solve` reports: power leaving over power
+    entering. Where the model's input power is negative (the load back-drives the train)
+    that is the reciprocal of declared output over declared input.
 
     Parameters
     ----------
     model : Model
         The train; its values fix the power-direction pattern the formulas are for.
+    mode : str, optional
+        The mode of a model with modes (required for one): the formulas are those of the
+        train in that mode with its freewheels as ``solve --mode`` decides them at the
+        model's values; each freewheel's sign condition is among the validity
+        conditions.
     relations : mapping, optional
         ``{symbol name: expression}`` substituted before simplifying, e.g.
         ``{"z_4": "z_5 - 1"}`` (the one-tooth difference of a cycloid stage). Each must
@@ -61,7 +73,9 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     """
     _check_ports(model)
     _check_constant_losses(model)
-    numeric = solve(model)
+    point = TrainCase.of(model, mode).point().required()
+    numeric, source = point.result, model
+    model = numeric.model       # the train in its mode, freewheels decided
     _check_solved(numeric)
     elements = elements_of(model)
     table = build_symbols(model, elements, relations)
@@ -84,8 +98,15 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
     forces = _solved(systems.force_matrix, systems.force_rhs, "torque balances")
     t_out = systems.reactions[output_body].xreplace(dict(zip(systems.forces, forces)))
     ratio = sp.cancel(1 / w_out)
-    efficiency = sp.cancel(-sign * t_out * w_out)  # (-T_out w_out) / (T_in w_in), w_in = 1
+    formal = -sign * t_out * w_out      # (-T_out w_out) / (T_in w_in), w_in = 1
+    efficiency = sp.cancel(formal if sign > 0 else 1 / formal)   # leaving / entering
     conditions = _power_conditions(elements, codes, factors, forces, speeds, table, values)
+    reactions = {body: expr.xreplace(dict(zip(systems.forces, forces)))
+                 for body, expr in systems.reactions.items()}
+    reactions[input_body] = sp.Integer(sign)
+    input_sense = 1 if numeric.kinematics.speed(model.inputs[0].component) >= 0 else -1
+    conditions += freewheel_conditions(source, point.moded, model, elements, factors, forces,
+                                       speeds, reactions, sign, input_sense, table, values)
     conditions += [_denominator(ratio, "ratio", table, values),
                    _denominator(efficiency, "efficiency", table, values)]
     return FormulaResult(
@@ -94,7 +115,7 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None) ->
         directions=_directions(elements, codes, factors, table), conditions=tuple(conditions),
         relations=MappingProxyType(dict(table.relations)),
         numeric=MappingProxyType({"ratio": numeric.ratio,
-                                  "efficiency": numeric.formal_efficiency}),
+                                  "efficiency": numeric.efficiency}),
         model=model)
 
 

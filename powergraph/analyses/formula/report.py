@@ -29,7 +29,10 @@ def _directions(result: FormulaResult) -> list[str]:
 
 
 def _conditions(result: FormulaResult) -> list[str]:
-    shown = [(c.text(), c.description) for c in result.conditions if not c.always]
+    """The conditions that depend on the values, each freewheel's state (always named: the
+    formulas are those of that state), then a count of the others."""
+    shown = [(c.text(), c.description) for c in result.conditions
+             if not c.always or c.kind == "freewheel"]
     width = min(48, max((len(text) for text, _ in shown), default=0))
     lines = [f"  {text:<{width}}  ({what})" for text, what in shown]
     always = len(result.conditions) - len(shown)

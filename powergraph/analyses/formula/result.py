@@ -59,7 +59,8 @@ class Condition:
     positive; ``factors`` are the parts whose sign depends on the values.
     """
 
-    kind: str                 # "power" (a driver keeps driving) or "denominator"
+    kind: str                 # "power" (a driver keeps driving), "denominator" or
+                              # "freewheel" (a freewheel keeps its state)
     description: str
     expression: sp.Expr
     relation: str             # ">", "!=" or "="

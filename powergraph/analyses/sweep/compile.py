@@ -25,8 +25,8 @@ from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.layout import Layout, base_values, layout_of
 from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_all,
                                              check_values, flat_values, parse_paths)
-from powergraph.analyses.sweep.result import (CYCLE, LOCKED, OK, UNSETTLED, SweepResult,
-                                             converged_of)
+from powergraph.analyses.sweep.result import (CYCLE, LOADS, LOCKED, NO_FREEWHEEL_STATE, OK,
+                                             UNSETTLED, SweepResult, converged_of)
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
 from powergraph.statics import PowerFlowResult, solve
@@ -91,11 +91,17 @@ class CompiledSweep:
     [0.287376, 0.873043]
     """
 
-    def __init__(self, model: Model, paths: Sequence[str], backend: str = "auto") -> None:
+    def __init__(self, model: Model, paths: Sequence[str], backend: str = "auto",
+                 mode: str | None = None) -> None:
+        from powergraph.statics.case import TrainCase
+
         if isinstance(paths, str):
             paths = [paths]
         if backend not in BACKENDS:
             raise UsageError(f"backend must be one of {', '.join(BACKENDS)}, got {backend!r}")
+        self.case = TrainCase.of(model, mode)
+        self.source = model
+        model = self.case.plain_model()    # the layout; freewheels as at the model's load
         refuse_loss_blocks(model, "the compiled sweep")
         if model.buses:
             raise UsageError("the compiled sweep does not take machines on buses "
@@ -157,6 +163,8 @@ class CompiledSweep:
         kernels = None
         arrays, shape = broadcast_values(self.parameters, values, check=False)
         n = int(np.prod(shape, dtype=np.int64))
+        if self.case.decides_freewheels:
+            return self._per_point(arrays, shape, n, quiet)
         if n >= KERNEL_MIN_VARIANTS and self._closed_forms:
             kernels = kernel_module()
         if kernels is None:
@@ -182,6 +190,27 @@ class CompiledSweep:
                               self.backend.name, converged)
 
     evaluate = __call__
+
+    def _per_point(self, arrays: dict, shape: tuple, n: int, quiet: bool) -> SweepResult:
+        """A mode whose freewheels are decided at each operating point: every variant is
+        the case's own answer (:meth:`powergraph.statics.case.TrainCase.point`), so the
+        sweep decides them exactly where ``solve --mode`` does."""
+        check_all(self.parameters, arrays)
+        flat = flat_values(arrays, shape)
+        outputs = Outputs.empty(n, self.layout.n_elements)
+        with _progress(n, 1, quiet) as update:
+            for j in range(n):
+                try:
+                    point = self.case.point(self._variant(flat, j, self.source))
+                except PowerGraphError:
+                    point = None
+                if point is not None and point.ok:
+                    _write_single(outputs, j, point.result, self.layout)
+                else:                             # flagged: no number is made up
+                    _write_failed(outputs, j, LOADS if point is None else NO_FREEWHEEL_STATE)
+                update(1)
+        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
+                              "single solves", converged_of(outputs.status))
 
     def _run_chunks(self, flat: dict, outputs: Outputs, step: int, quiet: bool) -> None:
         """Every variant of ``flat`` into ``outputs``, chunk by chunk, with numpy."""
@@ -271,8 +300,9 @@ class CompiledSweep:
         flat = flat_values(arrays, shape)
         return self._variant(flat, index)
 
-    def _variant(self, flat: dict, index: int) -> Model:
-        chunk, lay, model = self._chunk(flat, index, index + 1), self.layout, self.model
+    def _variant(self, flat: dict, index: int, model: Model | None = None) -> Model:
+        chunk, lay = self._chunk(flat, index, index + 1), self.layout
+        model = self.model if model is None else model
         scalar = lambda value: float(np.ravel(value)[0])   # noqa: E731
         for k, link in enumerate(lay.links):
             changes = {"efficiency": scalar(chunk.efficiencies[k])}
@@ -390,6 +420,14 @@ def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout)
         out.codes[k, j] = 0 if flow.driver is None else (1 if flow.driver == flow.a else -1)
 
 
+def _write_failed(out: Outputs, j: int, status: int) -> None:
+    """Variant ``j`` of ``out`` has no answer (``status`` says why): NaN powers."""
+    for name in ("ratio", "efficiency", "input_power", "output_power", "total_loss"):
+        getattr(out, name)[j] = np.nan
+    out.self_locking[j], out.status[j], out.passes[j] = False, status, 0
+    out.losses[:, j], out.codes[:, j] = np.nan, 0
+
+
 def kernel_module():
     """:mod:`powergraph.analyses.sweep.kernel`, or None when numba does not import."""
     try:
@@ -434,7 +472,8 @@ def refuse_loss_blocks(model: Model, what: str) -> None:
                          f"efficiency, or use powergraph solve / map", places[0])
 
 
-def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> CompiledSweep:
+def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto",
+                  mode: str | None = None) -> CompiledSweep:
     """Compile ``model`` once into an evaluator over arrays of the values at ``paths``.
 
     See :class:`CompiledSweep`.
@@ -449,11 +488,12 @@ def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto") -> 
     >>> np.round(r.ratio, 9).tolist(), np.round(r.efficiency, 6).tolist()
     ([121.0, 121.0], [0.287376, 0.714608])
     """
-    return CompiledSweep(model, paths, backend)
+    return CompiledSweep(model, paths, backend, mode)
 
 
 def sweep(model: Model, values: Mapping[str, Any], *, backend: str = "auto",
-          chunk_size: int = CHUNK_SIZE, quiet: bool = False) -> SweepResult:
+          chunk_size: int = CHUNK_SIZE, quiet: bool = False,
+          mode: str | None = None) -> SweepResult:
     """Compile ``model`` for the PATHs of ``values`` and evaluate them (one call).
 
     Examples
@@ -465,5 +505,5 @@ def sweep(model: Model, values: Mapping[str, Any], *, backend: str = "auto",
     >>> np.round(r.ratio, 12).tolist()
     [3.0, 4.0, 5.0]
     """
-    compiled = CompiledSweep(model, list(values), backend)
+    compiled = CompiledSweep(model, list(values), backend, mode)
     return compiled(values, chunk_size=chunk_size, quiet=quiet)

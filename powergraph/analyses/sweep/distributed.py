@@ -38,7 +38,7 @@ _COMPILED: dict[str, Any] = {}
 
 def sweep_on_cluster(model: Model, values: Mapping[str, Any], *, backend: str = "auto",
                      part_size: int = PART_SIZE, scheduler: str | None = None,
-                     workers: int | None = None) -> SweepResult:
+                     workers: int | None = None, mode: str | None = None) -> SweepResult:
     """:func:`~powergraph.analyses.sweep.sweep`, with the variants evaluated in parts on a
     Dask cluster (``scheduler="dask://HOST:PORT"``), on ``workers`` local worker processes,
     or here when neither is given.
@@ -63,7 +63,7 @@ def sweep_on_cluster(model: Model, values: Mapping[str, Any], *, backend: str = 
     n = int(np.prod(shape, dtype=np.int64))
     flat = flat_values(arrays, shape, keep_scalars=False)
     key = uuid4().hex
-    parts = [(key, model, tuple(flat), backend,
+    parts = [(key, model, mode, tuple(flat), backend,
               {path: v[start:start + part_size] for path, v in flat.items()})
              for start in range(0, max(n, 1), part_size)]
     try:
@@ -75,10 +75,10 @@ def sweep_on_cluster(model: Model, values: Mapping[str, Any], *, backend: str = 
 
 def _evaluate_part(part: tuple) -> SweepResult:
     """One part on a worker: the model compiled once per sweep (``key``) and kept."""
-    key, model, paths, backend, values = part
+    key, model, mode, paths, backend, values = part
     if key not in _COMPILED:
         _COMPILED.clear()
-        _COMPILED[key] = compile_sweep(model, paths, backend)
+        _COMPILED[key] = compile_sweep(model, paths, backend, mode)
     return _COMPILED[key](values, quiet=True)
 
 

@@ -13,8 +13,8 @@ from powergraph.display import HTML_ROWS, Displayed, dataframe, html_table
 from powergraph.records import record
 
 #: Status codes of a variant (``SweepResult.status``), by value.
-STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked")
-OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED = range(6)
+STATUS = ("ok", "cycle", "unsettled", "speeds", "loads", "locked", "no-freewheel-state")
+OK, CYCLE, UNSETTLED, SPEEDS, LOADS, LOCKED, NO_FREEWHEEL_STATE = range(7)
 #: Columns after the PATHs in the CSV; ``extra=True`` adds the rest.
 CSV_COLUMNS = ("ratio", "efficiency")
 EXTRA_COLUMNS = ("input_power", "output_power", "total_loss", "self_locking", "converged",
@@ -63,7 +63,8 @@ class SweepResult(Displayed):
         single solver's locking verdict: the train stays at rest, efficiency 0),
         ``cycle`` and ``unsettled`` (only where even the single solver's complementarity
         search finds no answer), ``speeds`` (Willis rows singular), ``loads`` (loads not
-        determined).
+        determined), ``no-freewheel-state`` (a mode's freewheels have no consistent
+        state at this variant, or several).
     passes : ndarray
         Passes of the direction iteration.
     backend : str
