@@ -110,7 +110,7 @@ class TrainCase:
             raise UsageError(f"--mode {mode}: unknown mode (the model's modes: "
                              + ", ".join(model.modes) + ")")
         if backdrive and (len(model.inputs) != 1 or len(model.outputs) != 1):
-            raise UsageError("back-driving needs a train with one input and one output "
+            raise UsageError("--backdrive needs a train with one input and one output "
                              f"port (this one has {len(model.inputs)} and "
                              f"{len(model.outputs)})")
         return cls(model=model, mode=mode, backdrive=backdrive)

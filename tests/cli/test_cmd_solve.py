@@ -124,20 +124,45 @@ def test_solve_loads_no_other_command_nor_numpy_ma_nor_scipy(name) -> None:
     assert proc.stderr.strip().splitlines()[-1] == "[] False False"
 
 
-def test_solve_reports_the_cycloid_fluctuation_at_the_output(capsys) -> None:
+def test_cycloid_model_reports_the_fluctuation_at_the_output(capsys) -> None:
     """RV: i_train = 1 + (z2/z1)(1 + i_stage) = 4 + 3 i_stage, so a relative stage deviation
-    δ shows at the output as 3 i_stage/i_train δ = (117/121) δ (input speed held)."""
+    δ shows at the output as 3 i_stage/i_train δ = (117/121) δ (input speed held).
+    ``cycloid --model`` reports it; ``solve --json`` is the result's ``to_dict()`` alone
+    and its text points to that command."""
     path = str(ROOT / "models" / "rv40e_profile_error.yaml")
-    assert main(["solve", path, "--json"]) == 0
+    assert main(["cycloid", "--model", path, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    stage, = out["cycloid_fluctuation"]["stages"]
+    stage, = out["stages"]
     assert stage["max_deviation_percent"] == pytest.approx(
         stage["stage_max_deviation_percent"] * 117 / 121, rel=1e-9)
     assert stage["stage_max_deviation_percent"] > 0
+    assert main(["solve", path, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "cycloid_fluctuation" not in out
     assert out["efficiency"] == pytest.approx(  # the block changes no power
         PUBLISHED["rv40e_virtual_power"]["both_094"]["efficiency"], abs=5e-7)
-    assert main(["solve", RV, "--json"]) == 0
-    assert "cycloid_fluctuation" not in json.loads(capsys.readouterr().out)
+    assert main(["solve", path]) == 0
+    assert f"powergraph cycloid --model {path}" in capsys.readouterr().out
+    assert main(["cycloid", "--model", RV]) == 2       # no cycloid block: one line
+    assert "no mesh has a cycloid block" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name, mode, backdrive", [
+    ("rv40e.yaml", None, False), ("wolfrom_3k.yaml", None, True),
+    ("simpson_3speed.yaml", "2", False), ("ravigneaux_4speed.yaml", "3", True),
+    ("ths2_power_split.yaml", None, False)])
+def test_solve_json_is_the_case_answers_to_dict(capsys, name, mode, backdrive) -> None:
+    """``solve --json`` prints ``to_dict()`` of the case's answer and nothing else."""
+    from powergraph.model import load_model
+    from powergraph.statics.case import TrainCase
+
+    path = str(ROOT / "models" / name)
+    argv = ["solve", path, "--json"] + (["--mode", mode] if mode else []) \
+        + (["--backdrive"] if backdrive else [])
+    assert main(argv) == 0
+    printed = json.loads(capsys.readouterr().out)
+    answer = TrainCase.of(load_model(path), mode, backdrive).point().report.to_dict()
+    assert printed == json.loads(json.dumps(answer, default=str))
 
 
 FIRST_RUN = str(ROOT / "models" / "rv40e.yaml")
