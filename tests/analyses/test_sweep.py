@@ -508,3 +508,22 @@ def test_check_values_refuses_exactly_what_value_allowed_refuses(kind) -> None:
         except ModelError:
             refused = True
         assert refused == (not bool(value_allowed(kind, value))), (kind, value)
+
+
+def test_sweep_reuses_the_compiled_form_of_the_same_model_and_paths() -> None:
+    """``sweep(model, values)`` compiles once per model and PATH set (issue 35: it re-derived
+    the closed forms on every call); a changed copy of the model compiles anew, and the
+    answers are those of a fresh compile."""
+    import dataclasses
+
+    from powergraph.analyses.sweep.compile import CompiledSweep, compiled_for
+
+    model = load_model(ROOT / "models" / "rv40e_wang2021.yaml")
+    values = {"links.1.efficiency": np.linspace(0.9, 0.99, 7)}
+    first = compiled_for(model, list(values))
+    assert compiled_for(model, list(values)) is first
+    assert compiled_for(dataclasses.replace(model), list(values)) is not first
+    again = sweep(model, values, quiet=True)
+    fresh = CompiledSweep(model, list(values))(values, quiet=True)
+    assert np.array_equal(again.efficiency, fresh.efficiency)
+    assert np.array_equal(again.ratio, fresh.ratio)

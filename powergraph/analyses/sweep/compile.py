@@ -505,5 +505,30 @@ def sweep(model: Model, values: Mapping[str, Any], *, backend: str = "auto",
     >>> np.round(r.ratio, 12).tolist()
     [3.0, 4.0, 5.0]
     """
-    compiled = CompiledSweep(model, list(values), backend, mode)
-    return compiled(values, chunk_size=chunk_size, quiet=quiet)
+    return compiled_for(model, list(values), backend, mode)(values, chunk_size=chunk_size,
+                                                             quiet=quiet)
+
+
+#: Compiled sweeps kept per model (the last few PATH sets), so that calling
+#: :func:`sweep` again on the same model and PATHs reuses its closed forms and kernels.
+KEEP_COMPILED = 8
+
+
+def compiled_for(model: Model, paths: Sequence[str], backend: str = "auto",
+                 mode: str | None = None) -> CompiledSweep:
+    """The :class:`CompiledSweep` of ``model`` for ``paths``, compiled on the first call
+    and kept in the model's own store (``Model.derived``, which ``==`` ignores and a
+    changed copy starts without) for the next ones.
+
+    >>> from powergraph.model import load_model
+    >>> rv = load_model("models/rv40e_wang2021.yaml")
+    >>> compiled_for(rv, ["links.1.efficiency"]) is compiled_for(rv, ["links.1.efficiency"])
+    True
+    """
+    kept = model.derived.setdefault("analyses.sweep.compiled", {})
+    key = (tuple(paths), backend, mode)
+    if key not in kept:
+        if len(kept) >= KEEP_COMPILED:
+            del kept[next(iter(kept))]
+        kept[key] = CompiledSweep(model, paths, backend, mode)
+    return kept[key]
