@@ -34,7 +34,6 @@ from powergraph.errors import SolveError
 from powergraph.kinematics import elements_of, solve_speeds
 from powergraph.kinematics.elements import gear_torque
 from powergraph.kinematics.system import system_of
-from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics import solve
@@ -43,6 +42,7 @@ from powergraph.statics.bearings import (body_torques, bearing_torque, relative_
 from powergraph.statics.directions import (driver_codes, factors_for, own_scales,
                                            relative_speeds)
 from powergraph.statics.equilibrium import loads_of
+from powergraph.statics.loss_sources import loss_sources
 from powergraph.statics.friction import MAX_PASSES, friction_meshes, mesh_friction
 from powergraph.units_si import RAD_S_PER_RPM
 from powergraph.statics.ports import flow_efficiency_of_roles
@@ -304,28 +304,15 @@ class _Grid:
 
 
 def _bearing_specs(model: Model, row: dict, elements: tuple) -> list[dict]:
-    """What :func:`powergraph.statics.bearings.bearing_states` reads, per bearing and drag:
-    the two bodies' rows, the instances, the blocks and the meshes loading it."""
+    """What :func:`powergraph.statics.bearings.bearing_states` reads, per loss source
+    (:func:`powergraph.statics.loss_sources.loss_sources`): the two bodies' rows, the
+    instances, the laws and the meshes loading it (as element columns)."""
     column = {el.link: k for k, el in enumerate(elements)}
-    specs = []
-    for link in model.links:
-        if link.type == "bearing" and link.blocks:
-            friction = link.blocks.get("friction")
-            meshes = []
-            for mesh, gear in (load_meshes(model, link.between[0]) if friction else ()):
-                k = column[mesh]
-                count = max(model.components[c].count for c in model.links[mesh].between)
-                meshes.append((k, gear == elements[k].a, gear_radius(model, mesh, gear), count))
-            specs.append({"rows": tuple(row[model.body_of[c]] for c in link.between),
-                          "count": max(model.components[c].count for c in link.between),
-                          "friction": friction, "drag": link.blocks.get("drag"),
-                          "meshes": meshes})
-    for component in model.components.values():
-        if component.drag is not None:
-            specs.append({"rows": (row[model.body_of[component.id]], row[model.frame_body]),
-                          "count": component.count, "friction": None, "drag": component.drag,
-                          "meshes": []})
-    return specs
+    return [{"rows": tuple(row[model.body_of[c]] for c in source.between),
+             "count": source.instances, "friction": source.friction, "drag": source.drag,
+             "meshes": [(column[mesh], gear == elements[column[mesh]].a, radius, count)
+                        for mesh, gear, radius, count in source.loaded_by]}
+            for source in loss_sources(model)]
 
 
 def _eta(result) -> float:

@@ -53,11 +53,10 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.kinematics.elements import gear_torque
-from powergraph.model.block_bearing import gear_radius, load_meshes
-from powergraph.model.graph import unique_name
 from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics.equilibrium import Loads, loads_of
+from powergraph.statics.loss_sources import LossSource, loss_sources
 
 #: Relative speeds below this fraction of the two bodies' speeds are zero.
 SPEED_NOISE = 1e-12
@@ -102,31 +101,14 @@ class BearingState:
 
 
 def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
-    """Every bearing with friction/drag and every body drag of ``model``, evaluated at the
-    speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`).
+    """Every loss source of ``model`` (:func:`powergraph.statics.loss_sources.loss_sources`:
+    its bearings with friction/drag, body drags, and any registered kind), evaluated at
+    the speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`).
 
     The torques are those of this result's forces: the solver iterates until they agree
     with the torques the balance was solved with.
     """
-    states, names = [], set()
-    for link in model.links:
-        if link.type == "bearing" and link.blocks:
-            carried, carrying = link.between
-            count = max(model.components[c].count for c in link.between)
-            load = _radial_load(model, result, carried) if "friction" in link.blocks else 0.0
-            # unique among the bearings (ids may contain "-"; two bearings may join a pair)
-            name = unique_name(f"bearing {model.raw_id(carried)}-{model.raw_id(carrying)}",
-                               names)
-            names.add(name)
-            states.append(_state(model, result, "bearing", link.index, (carried, carrying),
-                                 count, link.blocks.get("friction"), link.blocks.get("drag"),
-                                 load, name))
-    for component in model.components.values():
-        if component.drag is not None:
-            states.append(_state(model, result, "drag", None, (component.id, model.frame),
-                                 component.count, None, component.drag, 0.0,
-                                 f"drag {component.raw_id}"))
-    return tuple(states)
+    return tuple(_state(model, result, source) for source in loss_sources(model))
 
 
 def relative_speed(w_1: Any, w_2: Any) -> Any:
@@ -156,15 +138,25 @@ def bearing_torque(count: int, friction: Any, drag: Any, load: Any, relative: An
     return m_friction, m_drag, (float(total) if total.ndim == 0 else total)
 
 
-def _state(model: Model, result: Any, kind: str, link: int | None, between: tuple[str, str],
-           count: int, friction: Any, drag: Any, load: float, node: str) -> BearingState:
-    bodies = (model.body_of[between[0]], model.body_of[between[1]])
+def _state(model: Model, result: Any, source: LossSource) -> BearingState:
+    bodies = (model.body_of[source.between[0]], model.body_of[source.between[1]])
     relative = relative_speed(*(result.kinematics.body_speeds[b] for b in bodies))
-    m_friction, m_drag, torque = bearing_torque(count, friction, drag, load, relative)
-    return BearingState(kind=kind, link=link, between=between, bodies=bodies, instances=count,
+    load = sum(abs(tooth_force(*_mesh_force(result, mesh, gear), radius, count))
+               for mesh, gear, radius, count in source.loaded_by)
+    m_friction, m_drag, torque = bearing_torque(source.instances, source.friction,
+                                                source.drag, load, relative)
+    return BearingState(kind=source.kind, link=source.link, between=source.between,
+                        bodies=bodies, instances=source.instances,
                         relative_speed=float(relative) + 0.0, radial_load=float(load),
                         friction_torque=float(m_friction), drag_torque=float(m_drag),
-                        torque=float(torque), loss=float(torque * abs(relative)), node=node)
+                        torque=float(torque), loss=float(torque * abs(relative)),
+                        node=source.node)
+
+
+def _mesh_force(result: Any, mesh: int, gear: str) -> tuple:
+    """``(ratio, force, factor, on gear a)`` of ``gear`` in the mesh ``links[mesh]``."""
+    flow = result.element(mesh)
+    return flow.ratio, flow.force, flow.factor, gear == flow.a
 
 
 def body_torques(torque: Any, relative: Any) -> tuple[Any, Any]:
@@ -189,18 +181,6 @@ def tooth_force(ratio: Any, force: Any, factor: Any, on_gear_a: bool, radius: fl
     return gear_torque(ratio, force, factor, on_gear_a) / radius / instances
 
 
-def tooth_forces(model: Model, result: Any, carried: str) -> list[float]:
-    """Signed tangential tooth force (N, per mesh instance) on each gear of the carried
-    member's body (:func:`tooth_force`)."""
-    forces = []
-    for mesh, gear in load_meshes(model, carried):
-        flow = result.element(mesh)
-        count = max(model.components[c].count for c in model.links[mesh].between)
-        forces.append(float(tooth_force(flow.ratio, flow.force, flow.factor, gear == flow.a,
-                                        gear_radius(model, mesh, gear), count)))
-    return forces
-
-
 def torque_change(old: Any, new: Any, acting: Any) -> Any:
     """The convergence test of the bearing iteration: the largest change of a bearing
     torque between two passes (``old``, ``new``: torques per body, the last axis),
@@ -214,10 +194,6 @@ def torque_change(old: Any, new: Any, acting: Any) -> Any:
     scale = np.maximum(np.max(np.abs(acting), axis=-1, initial=0.0),
                        np.max(np.abs(new), axis=-1, initial=0.0))
     return np.where(moved > 0.0, moved / np.where(scale > 0.0, scale, 1.0), 0.0)
-
-
-def _radial_load(model: Model, result: Any, carried: str) -> float:
-    return sum(abs(f) for f in tooth_forces(model, result, carried))
 
 
 def torques_on_bodies(states: tuple[BearingState, ...]) -> dict[str, float]:
@@ -239,9 +215,9 @@ def torques_on_bodies(states: tuple[BearingState, ...]) -> dict[str, float]:
 def load_regime(model: Model, result: Any) -> tuple:
     """What must not change for the solution to stay affine in the loads: each element's
     driver and the sign of every tooth force that loads a bearing."""
-    signs = tuple((f > 0) - (f < 0) for link in model.links
-                  if link.type == "bearing" and "friction" in link.blocks
-                  for f in tooth_forces(model, result, link.between[0]))
+    signs = tuple((f > 0) - (f < 0) for source in loss_sources(model)
+                  for mesh, gear, radius, count in source.loaded_by
+                  for f in [tooth_force(*_mesh_force(result, mesh, gear), radius, count)])
     return tuple(e.driver for e in result.elements), signs
 
 

@@ -26,6 +26,7 @@ from powergraph.errors import ModelError, SolveError
 from powergraph.kinematics.elements import gear_torque
 from powergraph.model.spec import Model
 from powergraph.records import record
+from powergraph.statics.loss_sources import loss_sources
 
 MAX_PASSES = 60
 
@@ -98,7 +99,7 @@ def solve_with_friction(model: Model,
         passes += 1
         result = solve(current, extra)
         states = tuple(_state(model, result, frictions[k]) for k in sorted(frictions))
-        bearings = bearing_states(model, result) if model.has_bearing_losses else ()
+        bearings = bearing_states(model, result)
         torques = torques_on_bodies(bearings)
         change = max((abs(s.efficiency - current[s.link]) for s in states), default=0.0)
         moved = _torque_change(extra, torques, result)
@@ -138,12 +139,21 @@ def loss_block_places(model: Model) -> list[str]:
     >>> loss_block_places(load_model("models/rv40e.yaml"))[:2]
     ['links[0].friction', 'links[1].pins']
     """
-    places = [f"{link.path}.{'pins' if getattr(block, 'model', '') == 'cycloid' else key}"
-              for link in model.links for key, block in link.blocks.items()
-              if key in ("friction", "drag")]
-    places += [f"components.{c.raw_id}.drag" for c in model.components.values()
-               if c.drag is not None]
-    return places
+    found = [(link.index, f"{link.path}.{_block_name(link.blocks['friction'])}")
+             for link in model.links if link.type == "mesh" and "friction" in link.blocks]
+    for source in loss_sources(model):
+        where = len(model.links) if source.link is None else source.link
+        if source.kind == "bearing":
+            found += [(where, f"{source.path}.{key}") for key, law in
+                      (("friction", source.friction), ("drag", source.drag)) if law is not None]
+        else:
+            found.append((where, source.path))
+    return [path for _, path in sorted(found, key=lambda item: item[0])]
+
+
+def _block_name(block: Any) -> str:
+    """A mesh's friction block as written: ``pins`` for a cycloid stage's."""
+    return "pins" if getattr(block, "model", "") == "cycloid" else "friction"
 
 
 @lru_cache(maxsize=1024)

@@ -13,8 +13,8 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
-from powergraph.errors import UsageError
 from powergraph.model.spec import Model
+from powergraph.statics.loss_sources import loss_sources
 from powergraph.model.validate import check_port_ranges
 from powergraph.statics.directions import (
     factors_of,
@@ -53,10 +53,6 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     ------
     ModelError
         (KinematicsError, StaticsError) when speeds or loads are not determined.
-    UsageError
-        A model with a modes table, not in one of its modes: solve its case,
-        ``TrainCase.of(model, mode).point()`` (:mod:`powergraph.statics.case`), which
-        decides its freewheels too.
 
     A train that cannot move as asked under its loads is not an error: the result has
     ``lock`` set, the train at rest and efficiency 0 (docs/locking.md).
@@ -74,17 +70,13 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     (0.98, -2.0, 20.0)
     """
     if extra_torques is None:
-        if model.modes and model.mode is None:
-            raise UsageError("the model has modes " + ", ".join(model.modes) + ": solve it "
-                             "in one, TrainCase.of(model, mode).point() (or powergraph solve "
-                             "--mode NAME)")
         check_port_ranges(model, speeds)
     if model.buses and extra_torques is None:
         from powergraph.statics.machines import solve_machines
 
         return solve_machines(model, speeds, solve)
     elements = elements_of(model)
-    if extra_torques is None and model.has_load_dependent_losses:
+    if extra_torques is None and (model.has_load_dependent_losses or loss_sources(model)):
         from powergraph.statics.friction import solve_with_friction
 
         # the passes change efficiencies and bearing torques, never the motion: the speeds
