@@ -222,12 +222,22 @@ def test_long_chains(n: int, eta: float) -> None:
 TRANSMISSIONS = [p for p in MODELS if "modes" in load_model(p).__dict__ and load_model(p).modes]
 
 
+#: Modes whose closed forms take about a minute of sympy (the factoring of the sign
+#: conditions of eight lossy meshes); their formulas are left out of this test.
+SLOW_FORMULAS = {("zf8hp_8speed", "5")}
+
+
 def _mode_cases():
-    for path in TRANSMISSIONS:
-        for mode in load_model(path).modes:
+    # the bundled transmissions as written, and the 8-speed with every mesh at 0.3, where
+    # reverse self-locks and 6th gear is lossless (its efficiency exactly 1)
+    trains = [(path, None) for path in TRANSMISSIONS] + [
+        (path, 0.3) for path in TRANSMISSIONS if path.stem == "zf8hp_8speed"]
+    for path, eta in trains:
+        for mode in load_model(path).modes if eta is None else ("6", "R"):
             for backdrive in (False, True):
-                yield pytest.param(path, mode, backdrive,
-                                   id=f"{path.stem}-{mode}-{'coast' if backdrive else 'fwd'}")
+                yield pytest.param(path, eta, mode, backdrive,
+                                   id=f"{path.stem}{'' if eta is None else f'@{eta}'}-{mode}-"
+                                      f"{'coast' if backdrive else 'fwd'}")
 
 
 def _at_input(model, speed: float, power: float):
@@ -268,13 +278,15 @@ def _assert_same(efficiency, verdict, expected_efficiency, expected_verdict, who
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("path, mode, backdrive", list(_mode_cases()))
-def test_every_mode_every_evaluator(path: Path, mode: str, backdrive: bool) -> None:
+@pytest.mark.parametrize("path, eta, mode, backdrive", list(_mode_cases()))
+def test_every_mode_every_evaluator(path: Path, eta, mode: str, backdrive: bool) -> None:
     from powergraph.analyses.formula import derive_formulas
     from powergraph.analyses.gear_table import gear_table
     from powergraph.statics.case import TrainCase
 
     model = load_model(path)
+    if eta is not None:
+        model = model.with_mesh_efficiency(eta)
     point = TrainCase.of(model, mode, backdrive).point()
     if point.result is None:       # e.g. first gear coasting through its freewheel
         row = {r.mode: r for r in gear_table(model).rows}[mode]
@@ -303,10 +315,13 @@ def test_every_mode_every_evaluator(path: Path, mode: str, backdrive: bool) -> N
                      "self-locking" if self_locking else "ok")
     _assert_same(float(swept.efficiency.flat[0]), swept_verdict, *expected, "sweep")
 
+    if (path.stem, mode) in SLOW_FORMULAS:
+        return
+    formula = derive_formulas(variant, mode=mode)
+    assert formula.verdict == expected[1]
+    assert formula.numeric["efficiency"] == pytest.approx(expected[0], rel=1e-12)
     if expected[1] == "ok":
-        formula = derive_formulas(variant, mode=mode)
         assert formula.evaluate()["efficiency"] == pytest.approx(expected[0], rel=1e-9)
-        assert formula.numeric["efficiency"] == pytest.approx(expected[0], rel=1e-12)
         kinds = {c.kind for c in formula.conditions}
         if point.moded.freewheels and any(s in ("holding", "overrunning")
                                           for s in point.moded.freewheels.values()):

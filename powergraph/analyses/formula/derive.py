@@ -99,7 +99,9 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None,
     t_out = systems.reactions[output_body].xreplace(dict(zip(systems.forces, forces)))
     ratio = sp.cancel(1 / w_out)
     formal = -sign * t_out * w_out      # (-T_out w_out) / (T_in w_in), w_in = 1
-    efficiency = sp.cancel(formal if sign > 0 else 1 / formal)   # leaving / entering
+    # leaving / entering, as solve; where the train self-locks solve says 0 and the
+    # verdict says why: the closed form is then the formal efficiency (<= 0)
+    efficiency = sp.cancel(formal if sign > 0 or numeric.self_locking else 1 / formal)
     conditions = _power_conditions(elements, codes, factors, forces, speeds, table, values)
     reactions = {body: expr.xreplace(dict(zip(systems.forces, forces)))
                  for body, expr in systems.reactions.items()}
@@ -116,7 +118,7 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None,
         relations=MappingProxyType(dict(table.relations)),
         numeric=MappingProxyType({"ratio": numeric.ratio,
                                   "efficiency": numeric.efficiency}),
-        model=model)
+        model=model, verdict=point.verdict)
 
 
 def _solved(matrix: sp.Matrix, rhs: sp.Matrix, what: str) -> list[sp.Expr]:

@@ -28,6 +28,17 @@ def _directions(result: FormulaResult) -> list[str]:
     return lines
 
 
+def _verdict(result: FormulaResult) -> list[str]:
+    """A line for a verdict other than ``ok``: what the numbers above mean then."""
+    if result.verdict == "ok":
+        return []
+    if result.verdict == "self-locking":
+        return ["SELF-LOCKING at the model's values: the input cannot drive the output, so "
+                "solve's efficiency is 0; eta above is the formal efficiency (declared "
+                "output / declared input)"]
+    return [f"verdict: {result.verdict}"]
+
+
 def _conditions(result: FormulaResult) -> list[str]:
     """The conditions that depend on the values, each freewheel's state (always named: the
     formulas are those of that state), then a count of the others."""
@@ -76,7 +87,7 @@ def text_report(result: FormulaResult) -> str:
              f"efficiency  eta = {display(result.efficiency)}", "",
              f"at the model's values: i = {at['ratio']:.12g}, eta = {at['efficiency']:.12g}"
              f" (numeric solve: {result.numeric['ratio']:.12g}, "
-             f"{result.numeric['efficiency']:.12g})", "", "symbols"]
+             f"{result.numeric['efficiency']:.12g})", *_verdict(result), "", "symbols"]
     for name, value in result.values.items():
         lines.append(f"  {name:<12} = {value:<10g} {_meaning(result, name)}")
     for name, expr in result.relations.items():

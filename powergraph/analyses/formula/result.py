@@ -129,6 +129,10 @@ class FormulaResult:
     relations: Mapping[str, sp.Expr]
     numeric: Mapping[str, float]      # ratio and efficiency of the numeric solve
     model: Model = field(repr=False, compare=False)
+    #: The verdict of the numeric solve at the model's values (``ok``, ``self-locking``...;
+    #: :mod:`powergraph.statics.verdicts`). Self-locking: ``solve``'s efficiency is 0 and
+    #: the closed form is the formal efficiency, declared output over declared input (<= 0).
+    verdict: str = "ok"
 
     @property
     def values(self) -> dict[str, float]:
@@ -204,4 +208,5 @@ class FormulaResult:
             "relations": {n: str(e) for n, e in self.relations.items()},
             "at_model_values": {**at_values, "valid": self.holds()},
             "numeric": dict(self.numeric),
+            "verdict": self.verdict,
         }
