@@ -22,6 +22,11 @@ inside functions, which are lazy. Importing ``a.b.c`` also runs the packages ``a
 ``a.b`` first; those parent-package runs are not edges (each package's own imports are).
 That graph must follow the layers and have no cycle.
 
+Counting every import (lazy and ``if TYPE_CHECKING:`` ones too) there must be no circle
+either, but for ``CIRCLES_ALLOWED``: a result's ``text_report()`` or ``plot()`` may import
+its report or drawing module lazily, and that module never imports the result's module
+back (it works on the object it is given; annotations name the type as text).
+
 Lazy imports (inside functions) must follow the layers too, but for an explicit allow-list
 (``LAZY_ALLOWED``): a result's ``plot()`` method importing its drawing function from
 :mod:`powergraph.plot`, the package facade's lazy attributes, and the command line (the
@@ -92,25 +97,41 @@ def _import_time_statements(body: list[ast.stmt]):
             yield from _import_time_statements(node.body)
 
 
+def _imported(node: ast.Import | ast.ImportFrom, package: str, known: set[str]) -> set[str]:
+    """The powergraph modules one import statement loads (of ``known``)."""
+    if isinstance(node, ast.Import):
+        names = [alias.name for alias in node.names]
+    else:
+        base = node.module or ""
+        if node.level:
+            anchor = package.split(".")[:len(package.split(".")) - node.level + 1]
+            base = ".".join(anchor + ([base] if base else []))
+        subs = [f"{base}.{alias.name}" for alias in node.names]
+        # ``from package import submodule`` runs the package's __init__ first, as
+        # any import of a submodule does; like those parent-package runs, it is not
+        # counted as an edge to the package (its own imports are counted there).
+        names = subs + ([base] if any(sub not in known for sub in subs) else [])
+    return {name for name in names if name in known}
+
+
 def imports_of(module: str, path: Path, known: set[str]) -> set[str]:
     """powergraph modules that ``module`` imports at import time."""
-    tree = _parsed(path)
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found = set()
-    for node in _import_time_statements(tree.body):
-        if isinstance(node, ast.Import):
-            names = [alias.name for alias in node.names]
-        else:
-            base = node.module or ""
-            if node.level:
-                anchor = package.split(".")[:len(package.split(".")) - node.level + 1]
-                base = ".".join(anchor + ([base] if base else []))
-            subs = [f"{base}.{alias.name}" for alias in node.names]
-            # ``from package import submodule`` runs the package's __init__ first, as
-            # any import of a submodule does; like those parent-package runs, it is not
-            # counted as an edge to the package (its own imports are counted there).
-            names = subs + ([base] if any(sub not in known for sub in subs) else [])
-        found |= {name for name in names if name in known}
+    for node in _import_time_statements(_parsed(path).body):
+        found |= _imported(node, package, known)
+    found.discard(module)
+    return found
+
+
+def every_import_of(module: str, path: Path, known: set[str]) -> set[str]:
+    """powergraph modules that ``module`` names in any import statement: at import time,
+    inside a function (lazy) or under ``if TYPE_CHECKING:``."""
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(_parsed(path)):
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found |= _imported(node, package, known)
     found.discard(module)
     return found
 
@@ -229,6 +250,43 @@ def test_import_graph_has_no_cycles(graph) -> None:
     cycles = list(nx.simple_cycles(graph))
     assert cycles == []
     assert nx.is_directed_acyclic_graph(graph)
+
+
+#: Circles through lazy or TYPE_CHECKING imports still allowed, each a set of modules (the
+#: duty cycle's result and report: being reworked on its own).
+CIRCLES_ALLOWED = ({"powergraph.analyses.cycle", "powergraph.analyses.cycle_report"},)
+
+
+def circles() -> list[list[str]]:
+    """Groups of modules that reach each other through any imports (lazy and TYPE_CHECKING
+    ones too), each sorted, but for CIRCLES_ALLOWED."""
+    files = module_files()
+    graph = nx.DiGraph()
+    graph.add_nodes_from(files)
+    for module, path in files.items():
+        graph.add_edges_from((module, target)
+                             for target in every_import_of(module, path, set(files)))
+    return sorted(sorted(group) for group in nx.strongly_connected_components(graph)
+                  if len(group) > 1 and group not in CIRCLES_ALLOWED)
+
+
+def test_every_import_counts_for_circles(tmp_path) -> None:
+    source = ("from typing import TYPE_CHECKING\n"
+              "if TYPE_CHECKING:\n    from powergraph.statics.result import PowerFlowResult\n"
+              "def f():\n    from powergraph.plot import power_flow\n")
+    path = tmp_path / "probe.py"
+    path.write_text(source)
+    known = {"powergraph.statics.result", "powergraph.plot", "powergraph.plot.power_flow"}
+    assert every_import_of("powergraph.statics.probe", path, known) == {
+        "powergraph.statics.result", "powergraph.plot.power_flow"}
+
+
+def test_no_circles_through_lazy_or_type_checking_imports() -> None:
+    """A result's method may import its report or its drawing function lazily; that
+    module works on the object it is given and never imports the result's module back,
+    not even under ``if TYPE_CHECKING:`` (its annotations name the type as text). What
+    both need (labels, a shared helper) sits in a module lower down."""
+    assert circles() == []
 
 
 def test_the_lazy_checker_sees_imports_inside_functions(tmp_path) -> None:

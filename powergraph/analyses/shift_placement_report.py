@@ -1,12 +1,12 @@
-"""Text view of a :class:`~powergraph.analyses.shift_placement.ShiftPlacement`."""
+"""Text view of a :class:`~powergraph.analyses.shift_placement.ShiftPlacement`.
+
+Works on the placement it is given (its ``targets``, ``plans``, ``states``, ``model``):
+it never imports :mod:`powergraph.analyses.shift_placement`, whose ``text_report()``
+imports this module (the annotations name the types as text).
+"""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from powergraph.format import aligned_table, format_number, format_ratio
-
-if TYPE_CHECKING:   # pragma: no cover
-    from powergraph.analyses.shift_placement import ShiftPlacement, ShiftPlan
 
 #: Other plans listed below the best one, at most.
 OTHERS = 5

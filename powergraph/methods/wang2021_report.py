@@ -1,7 +1,9 @@
 """JSON object, readable report and the paper's Fig. 5 graph of a :class:`Wang2021Result`.
 
 Component ids in lists are written as in the model file (``model.raw_id``); dictionary
-keys are their string forms, as in the virtual-power report (docs/format.md).
+keys are their string forms, as in the virtual-power report (docs/format.md). Works on
+the result it is given: it never imports :mod:`powergraph.methods.wang2021`, whose result
+calls these functions (the annotations name the type as text).
 
 Examples
 --------
@@ -18,15 +20,12 @@ True
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from powergraph.format import format_ratio
 from powergraph.methods.tuning import lossless_cycloid_power
 from powergraph.statics.flow import BODY, GENERATOR, MOTOR, Flow
 from powergraph.units_si import RPM_PER_RAD_S
-
-if TYPE_CHECKING:
-    from powergraph.methods.wang2021 import Wang2021Result
 
 
 def _pair(result: "Wang2021Result", link: int) -> str:

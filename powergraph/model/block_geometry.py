@@ -29,8 +29,13 @@ planet_frame_2     (7)      seal_radius (r9), bearing_seat_radius (r6), bearing_
 Every radius is a radius (the paper says "diameter" in places, but its formulas square the
 value next to a pitch *radius* m·z/2). Counts in brackets are the paper's fixed numbers.
 
+A block is read by :func:`powergraph.model.blocks.validate_geometry` (the schema's
+format, then the checks of its shape's class here); the schema writes its ``geometry``
+definition from :data:`SHAPES`, so this module imports neither the schema nor its checker.
+
 Examples
 --------
+>>> from powergraph.model.blocks import validate_geometry
 >>> g = validate_geometry({"shape": "gear", "module": 1.5, "face_width": "12 mm",
 ...                        "bore_radius": 0}, "components.1.geometry")
 >>> g.shape, g.module, g.face_width
@@ -49,7 +54,6 @@ from typing import Any, ClassVar
 
 from powergraph.errors import ModelError
 from powergraph.model.schema_parts import NON_NEGATIVE, POSITIVE
-from powergraph.model.units import parse_quantity
 from powergraph.records import record
 
 
@@ -249,69 +253,3 @@ SHAPES: dict[str, type] = {cls.shape: cls for cls in (
 
 Geometry = (GearGeometry | CycloidDiscGeometry | NeedleGearGeometry | CrankshaftGeometry
             | PlanetFrame1Geometry | PlanetFrame2Geometry)
-
-
-def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Geometry:
-    """Validate a component's ``geometry`` block into an immutable dataclass.
-
-    The block's format (shapes, keys, types, ranges) is checked against the model schema
-    (:mod:`powergraph.model.schema`); this adds the dimension checks of each shape. A
-    block without ``shape`` on a component with teeth is a gear.
-
-    Parameters
-    ----------
-    raw : dict
-        The block as read from YAML: ``shape`` plus that shape's parameters.
-    path : str
-        Place in the model file (``components.1.geometry``), for error messages.
-    teeth : int, optional
-        The component's tooth number, when the caller has it: enables the checks that need
-        it (gear bore inside the root circle, pins not overlapping). The volume analysis
-        runs them again in any case.
-
-    Returns
-    -------
-    GearGeometry, CycloidDiscGeometry, NeedleGearGeometry, CrankshaftGeometry,
-    PlanetFrame1Geometry or PlanetFrame2Geometry
-
-    Raises
-    ------
-    ModelError
-        Unknown shape, unknown or missing key, a value of the wrong type or sign, or
-        dimensions that cannot be built; the path names the key.
-
-    Examples
-    --------
-    >>> g = validate_geometry({"shape": "crankshaft", "shaft_radius": 10,
-    ...     "gear_seat_length": 12, "bearing_width": 10, "journal_radius": 13,
-    ...     "journal_length": 10, "journals": 2}, "components.3.geometry")
-    >>> g.journals, g.to_dict()["shape"]
-    (2, 'crankshaft')
-    >>> validate_geometry({"module": 2, "face_width": 10, "bore_radius": 5},
-    ...                   "components.1.geometry", teeth=30).shape
-    'gear'
-    """
-    from powergraph.model.conform import conform, definition
-
-    if isinstance(raw, dict) and "shape" not in raw and teeth is None:
-        raise ModelError(f"missing: say which formula applies (one of {', '.join(SHAPES)}); "
-                         "it may be left out only on a component with teeth (a gear)",
-                         f"{path}.shape")
-    conform(raw, definition("geometry"), path)
-    cls = SHAPES[raw.get("shape", "gear")]
-    geometry = cls(**{spec.name: _value(raw[spec.name], spec, f"{path}.{spec.name}")
-                      for spec in fields(cls)})
-    geometry.check(path)
-    if teeth is not None:
-        geometry.check_teeth(teeth, path)
-    return geometry
-
-
-def _value(raw: Any, spec: Any, path: str) -> Any:
-    """A schema-checked value as its field's type (lengths in mm, counts, ids as text)."""
-    kind = spec.metadata["kind"]
-    if kind == "component":
-        return str(raw)
-    if kind == "count":
-        return raw
-    return parse_quantity(raw, "length", path)

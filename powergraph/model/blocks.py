@@ -2,6 +2,7 @@
 (:mod:`powergraph.model.schema`), their semantic checks live in one module each:
 
 - ``components.ID.geometry`` (volume, docs/volume.md): :mod:`powergraph.model.block_geometry`
+  (its shapes; read by :func:`validate_geometry` here, after the schema's format)
 - ``links[i].backlash`` / ``links[i].backlash_arcmin`` (docs/backlash.md):
   :mod:`powergraph.model.block_backlash`
 - ``links[i].cycloid`` (docs/cycloid.md): :mod:`powergraph.model.block_cycloid`
@@ -18,18 +19,80 @@ the result; the analyses read them.
 """
 from __future__ import annotations
 
+from dataclasses import fields
 from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.spec import Component
+from powergraph.model.units import parse_quantity
 
 
 def validate_geometry(raw: Any, path: str, teeth: int | None = None) -> Any:
-    """Validate a component's ``geometry`` block (see :mod:`.block_geometry`); the
-    component's teeth let checks such as "bore inside the root circle" run at load time."""
-    from powergraph.model.block_geometry import validate_geometry as validate
+    """Validate a component's ``geometry`` block into an immutable dataclass.
 
-    return validate(raw, path, teeth=teeth)
+    The block's format (shapes, keys, types, ranges) is checked against the model schema
+    (:mod:`powergraph.model.schema`); then the dimension checks of its shape's class
+    (:mod:`powergraph.model.block_geometry`) run. A block without ``shape`` on a component
+    with teeth is a gear.
+
+    Parameters
+    ----------
+    raw : dict
+        The block as read from YAML: ``shape`` plus that shape's parameters.
+    path : str
+        Place in the model file (``components.1.geometry``), for error messages.
+    teeth : int, optional
+        The component's tooth number, when the caller has it: enables the checks that need
+        it (gear bore inside the root circle, pins not overlapping). The volume analysis
+        runs them again in any case.
+
+    Returns
+    -------
+    GearGeometry, CycloidDiscGeometry, NeedleGearGeometry, CrankshaftGeometry,
+    PlanetFrame1Geometry or PlanetFrame2Geometry
+
+    Raises
+    ------
+    ModelError
+        Unknown shape, unknown or missing key, a value of the wrong type or sign, or
+        dimensions that cannot be built; the path names the key.
+
+    Examples
+    --------
+    >>> g = validate_geometry({"shape": "crankshaft", "shaft_radius": 10,
+    ...     "gear_seat_length": 12, "bearing_width": 10, "journal_radius": 13,
+    ...     "journal_length": 10, "journals": 2}, "components.3.geometry")
+    >>> g.journals, g.to_dict()["shape"]
+    (2, 'crankshaft')
+    >>> validate_geometry({"module": 2, "face_width": 10, "bore_radius": 5},
+    ...                   "components.1.geometry", teeth=30).shape
+    'gear'
+    """
+    from powergraph.model.block_geometry import SHAPES
+    from powergraph.model.conform import conform, definition
+
+    if isinstance(raw, dict) and "shape" not in raw and teeth is None:
+        raise ModelError(f"missing: say which formula applies (one of {', '.join(SHAPES)}); "
+                         "it may be left out only on a component with teeth (a gear)",
+                         f"{path}.shape")
+    conform(raw, definition("geometry"), path)
+    cls = SHAPES[raw.get("shape", "gear")]
+    geometry = cls(**{spec.name: _value(raw[spec.name], spec, f"{path}.{spec.name}")
+                      for spec in fields(cls)})
+    geometry.check(path)
+    if teeth is not None:
+        geometry.check_teeth(teeth, path)
+    return geometry
+
+
+def _value(raw: Any, spec: Any, path: str) -> Any:
+    """A schema-checked value as its field's type (lengths in mm, counts, ids as text)."""
+    kind = spec.metadata["kind"]
+    if kind == "component":
+        return str(raw)
+    if kind == "count":
+        return raw
+    return parse_quantity(raw, "length", path)
 
 
 def validate_mesh_blocks(raw: Mapping, path: str, pair: tuple[str, str],

@@ -27,10 +27,11 @@ from typing import Any, Callable
 
 from powergraph.errors import ModelError
 from powergraph.model.schema import definition, document_schema
+from powergraph.model.schema_parts import _EFFICIENCY
 from powergraph.model.units import SI_UNITS, parse_quantity
 from powergraph.model.yaml_loader import brief, join_path
 
-__all__ = ["conform", "definition"]
+__all__ = ["check_efficiency", "conform", "definition"]
 
 _JSON_TYPES = {"object": dict, "array": list, "string": str, "boolean": bool}
 
@@ -318,6 +319,29 @@ def _hashable(value: Any) -> bool:
     except TypeError:
         return False
     return True
+
+
+def check_efficiency(value: Any, path: str) -> float:
+    """A basic efficiency must be a number in (0, 1] (the schema's efficiency).
+
+    Parameters
+    ----------
+    value : Any
+        The value as given (``--mesh-efficiency``, ``Model.with_mesh_efficiency``).
+    path : str
+        Where it was given, for the message.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> check_efficiency(0.94, "x")
+    0.94
+    """
+    conform(value, _EFFICIENCY, path)
+    return float(value)
 
 
 def check_document(data: Any, source: str | None = None) -> None:

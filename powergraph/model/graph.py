@@ -12,10 +12,13 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Collection, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.spec import Body, Component, Link, Model
+from powergraph.model.spec_parts import Body, Component, Link
 
 if TYPE_CHECKING:
     import networkx as nx
+
+# ``Model`` is named as text, not imported: ``Model.in_mode`` (powergraph.model.spec) reaches
+# this module through powergraph.model.modes.
 
 
 def bodies_of(components: Mapping[str, Component],

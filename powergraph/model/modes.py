@@ -21,8 +21,11 @@ import dataclasses
 from typing import Iterable, Mapping
 
 from powergraph.errors import ModelError
-from powergraph.model.spec import Model, ShiftElement
+from powergraph.model.spec_parts import ShiftElement
 from powergraph.records import record
+
+# ``Model`` is named as text, not imported: ``Model.in_mode`` (powergraph.model.spec) calls
+# :func:`resolve` here.
 
 
 def mode_path(mode: str) -> str:

@@ -26,7 +26,7 @@ from typing import Any, Mapping
 
 from powergraph.errors import ModelError
 from powergraph.model.names import name_text
-from powergraph.model.spec import Component, Link, ShiftElement
+from powergraph.model.spec_parts import Component, Link, ShiftElement
 
 
 def shift_element(raw: Mapping, index: int, between: tuple[str, str],

@@ -4,6 +4,9 @@ A :class:`Model` is built by :func:`powergraph.model.model_from_dict` or
 :func:`powergraph.model.load_model`; every solver takes it and never changes it.
 Component ids are compared as strings: ``Component.id`` is the string form and
 ``Component.raw_id`` the value as written in the file (an int stays an int in JSON lists).
+Its parts (:class:`Component`, :class:`Link`, :class:`ShiftElement`, :class:`Port`,
+:class:`Bus`, :class:`Body`) are defined in :mod:`powergraph.model.spec_parts` and
+importable from here.
 """
 from __future__ import annotations
 
@@ -11,142 +14,14 @@ import dataclasses
 from dataclasses import field
 from functools import cached_property
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import Any, Mapping
 
+from powergraph.model.spec_parts import (LINK_TYPES, SHIFT_TYPES, Body, Bus, Component, Link,
+                                         Port, ShiftElement)
 from powergraph.records import record
 
-if TYPE_CHECKING:  # pragma: no cover
-    from powergraph.model.efficiency_table import EfficiencyTable
-
-LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
-#: Link types that are shift elements (docs/modes.md): resolved to ``fixed`` (engaged) or
-#: ``bearing`` (open: no constraint, only its drag) in ``Model.links``.
-SHIFT_TYPES = ("clutch", "brake", "freewheel")
-
-
-@record
-class Component:
-    """One numbered part of the train (a gear, shaft, carrier, the housing...)."""
-
-    id: str
-    raw_id: int | str
-    name: str | None = None
-    role: str | None = None
-    kind: str | None = None
-    teeth: int | None = None
-    internal: bool = False
-    count: int = 1
-    geometry: Any = None
-    note: str | None = None
-    drag: Any = None  # no-load drag against the frame (block_bearing.Drag; docs/losses.md)
-
-    @property
-    def is_frame(self) -> bool:
-        return self.role == "frame"
-
-    @property
-    def label(self) -> str:
-        """Short label for reports: the id, with the name if there is one."""
-        return f"{self.raw_id} ({self.name})" if self.name else str(self.raw_id)
-
-
-@record
-class Link:
-    """One edge of the graph: a mesh, a fixed joint, a coupling or a bearing.
-
-    For a mesh, ``carrier`` is the member on which both gear axes are fixed and
-    ``efficiency`` the basic (carrier-held) efficiency. ``ratio`` is Willis' quotient
-    ``(w_a - w_c)/(w_b - w_c)`` when given; otherwise it follows from the teeth.
-    ``blocks`` holds the optional analysis blocks (``backlash``, ``cycloid``, ...), already
-    validated by their own schemas.
-    """
-
-    index: int
-    type: str
-    between: tuple[str, str]
-    raw_between: tuple[int | str, int | str]
-    carrier: str | None = None
-    efficiency: float = 1.0
-    ratio: float | None = None
-    name: str | None = None
-    blocks: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
-
-    @property
-    def path(self) -> str:
-        return f"links[{self.index}]"
-
-
-@record
-class ShiftElement:
-    """A clutch, brake or freewheel (docs/modes.md), as written at ``links[index]``.
-
-    ``engaged`` is its state when the model is solved without a mode; ``holds`` (freewheels
-    only) is the sign of ``w_a - w_b`` it allows: ``positive`` lets ``a`` overrun ``b``
-    forward and holds it against turning backward relative to ``b``. ``drag`` (a
-    :class:`~powergraph.model.block_bearing.Drag`) acts in its slip speed while it is open.
-    """
-
-    index: int
-    kind: str
-    name: str
-    between: tuple[str, str]
-    raw_between: tuple[int | str, int | str]
-    engaged: bool = False
-    holds: str | None = None
-    drag: Any = None
-
-    @property
-    def path(self) -> str:
-        return f"links[{self.index}]"
-
-
-@record
-class Port:
-    """Where power enters (``input``) or leaves (``output``) the train."""
-
-    index: int
-    component: str
-    role: str
-    speed: float | None = None
-    power: float | None = None
-    torque: float | None = None
-    name: str | None = None
-    #: A machine's efficiency (a number, or an EfficiencyTable over speed and torque), bus
-    #: and the top of its speed range (rad/s, or None: ``role: machine``, docs/hybrid.md);
-    #: else None.
-    efficiency: float | EfficiencyTable | None = None
-    bus: str | None = None
-    max_speed: float | None = None
-
-    @property
-    def path(self) -> str:
-        return f"ports[{self.index}]"
-
-    @property
-    def is_machine(self) -> bool:
-        return self.role == "machine"
-
-
-@record
-class Bus:
-    """An electrical bus joining machine ports; ``battery`` is the battery's power into
-    the bus (W), None when free (docs/hybrid.md)."""
-
-    name: str
-    battery: float | None = None
-
-    @property
-    def path(self) -> str:
-        return f"buses.{self.name}"
-
-
-@record
-class Body:
-    """Components joined by ``fixed`` links: one rigid body with one speed."""
-
-    id: str
-    members: tuple[str, ...]
-    is_frame: bool = False
+__all__ = ["LINK_TYPES", "SHIFT_TYPES", "Body", "Bus", "Component", "Link", "Model", "Port",
+           "ShiftElement"]
 
 
 @record
@@ -257,7 +132,7 @@ class Model:
         >>> from powergraph.model import load_model
         >>> m = load_model("models/rv40e_wang2021.yaml").with_mesh_efficiency(0.99)  # doctest: +SKIP
         """
-        from powergraph.model.validate import check_efficiency
+        from powergraph.model.conform import check_efficiency
 
         efficiency = check_efficiency(efficiency, "--mesh-efficiency")
         links = tuple(dataclasses.replace(link, efficiency=efficiency)

@@ -16,29 +16,16 @@ from typing import Any, Mapping
 
 from powergraph.errors import Caveat, ModelError
 from powergraph.model.buses import buses_of, machine_fields
-from powergraph.model.conform import check_document, conform
+from powergraph.model.conform import check_document
 from powergraph.model.names import name_text, optional_name
 from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
 from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
 from powergraph.model.yaml_loader import brief, gc_paused
 
-_EFFICIENCY = {"type": "number", "exclusiveMinimum": 0, "maximum": 1}
-
-
 #: The largest port values (SI) and their units, as the schema bounds them in files.
 PORT_RANGES = {"speed": (MAX_SPEED, "rad/s"), "power": (MAX_POWER, "W"),
                "torque": (MAX_TORQUE, "N*m")}
-
-
-def check_efficiency(value: Any, path: str) -> float:
-    """A basic efficiency must be a number in (0, 1].
-
-    >>> check_efficiency(0.94, "x")
-    0.94
-    """
-    conform(value, _EFFICIENCY, path)
-    return float(value)
 
 
 def check_port_ranges(model: Model, speeds: Mapping[str, float] | None = None) -> None:
@@ -212,7 +199,7 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
     teeth = attrs.get("teeth")
     geometry = attrs.get("geometry")
     if geometry is not None:
-        from powergraph.model.block_geometry import validate_geometry
+        from powergraph.model.blocks import validate_geometry
 
         geometry = validate_geometry(geometry, f"{path}.geometry", teeth=teeth)
     drag = attrs.get("drag")

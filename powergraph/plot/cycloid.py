@@ -1,14 +1,14 @@
 """Figures of the cycloid fluctuation (Csobán 2021, Figs. 9–18).
 
 Every function takes a result of :mod:`powergraph.analyses.cycloid` and ``ax=None``, draws,
-and returns the axes. Nothing is computed here.
+and returns the axes. Nothing is computed here: the curves (the deviations too) come from
+the result, and this module never imports :mod:`powergraph.analyses.cycloid`.
 """
 from __future__ import annotations
 
 import numpy as np
 import matplotlib.pyplot as plt
 
-from powergraph.analyses.cycloid.fluctuation import deviation_percent
 from powergraph.plot.text import PLAIN, plain
 
 
@@ -62,9 +62,8 @@ def plot_deviation(result, ax=None, label: str | None = None):
     """
     ax = _axes(ax)
     colour = None
-    for _, angle, ratio in result.contact_segments():
+    for _, angle, deviation in result.deviation_segments():
         degrees = np.degrees(angle)
-        deviation = deviation_percent(ratio, result.ratio_nominal)
         for offset in ((0.0, 360.0) if degrees[-1] > 360.0 else (0.0,)):
             (line,) = ax.plot(degrees - offset, deviation, lw=1.1, color=colour,
                               label=label if colour is None else None)

@@ -1,6 +1,7 @@
 """Plots of a tolerance analysis: output histograms with specification lines, and the
 tornado chart of the Sobol indices. Every function takes ``ax=None``, returns the axes and
-computes nothing (the numbers come from :mod:`powergraph.analyses.tolerance`);
+computes nothing (the numbers, and the outputs' labels, come from the result it is given:
+it never imports :mod:`powergraph.analyses.tolerance`);
 matplotlib is imported when a function is called.
 
 Examples
@@ -109,8 +110,6 @@ def plot_tolerance(result, ax=None):
     -------
     list of matplotlib Axes, or the single Axes given
     """
-    from powergraph.analyses.tolerance.result import LABELS
-
     outputs = list(result.values)
     panels = len(outputs) + (1 if result.primary else 0)
     if ax is None:
@@ -121,13 +120,13 @@ def plot_tolerance(result, ax=None):
     single = not isinstance(ax, (list, tuple, np.ndarray))
     ax = list(np.atleast_1d(ax))
     for name, axis in zip(outputs, ax):
-        label, unit = LABELS.get(name, (name, ""))
+        label, unit = result.output_label(name)
         limits = [y.spec.value for y in result.yields if y.spec.output == name]
         output_histogram(result.values[name], f"{label}{f' ({unit})' if unit else ''}",
                          limits, ax=axis, title=f"{result.name}: {label}, "
                                                 f"{result.samples} units")
     if result.primary and len(ax) > len(outputs):
         tornado(dict(result.ranked()), ax=ax[len(outputs)],
-                title=f"Sobol indices of {LABELS[result.primary][0]}")
+                title=f"Sobol indices of {result.output_label(result.primary)[0]}")
     ax[0].figure.tight_layout()
     return ax[0] if single else ax

@@ -1,7 +1,9 @@
 """Draw Wang (2021)'s Figs. 12–13 from :class:`powergraph.methods.figures.FigureData`.
 
 Every function takes ``ax=None`` (a new figure when omitted), returns the axes and
-computes nothing: the data, labels and captions come from :mod:`powergraph.methods.figures`.
+computes nothing: the data, labels and captions come from the ``FigureData`` it is given
+(made by :mod:`powergraph.methods.figures`, which this module never imports: its
+``FigureData.plot()`` imports this one).
 
 Examples
 --------
@@ -12,9 +14,8 @@ Examples
 from __future__ import annotations
 
 import textwrap
-from typing import Any
+from typing import Any, Iterable
 
-from powergraph.methods.figures import FigureData
 from powergraph.plot.text import PLAIN, plain
 
 #: Line style per curve key: the paper's method solid, the virtual-power method broken.
@@ -56,7 +57,7 @@ def plot_figure(data: FigureData, ax: Any = None, marks: bool = True,
     for curve in data.curves:
         ax.plot(curve.x, curve.y, label=curve.label, **STYLES.get(curve.key, {}))
     if marks:
-        _marks(ax, data)
+        _marks(ax, data.marks)
     ax.set_xlabel(data.xlabel, **PLAIN)
     ax.set_ylabel(data.ylabel, **PLAIN)
     if title:
@@ -66,8 +67,9 @@ def plot_figure(data: FigureData, ax: Any = None, marks: bool = True,
     return ax
 
 
-def _marks(ax: Any, data: FigureData) -> None:
-    for mark in data.marks:
+def _marks(ax: Any, marks: Iterable[Any]) -> None:
+    """A dot and its text at each mark (the paper's values above, the others below)."""
+    for mark in marks:
         ax.plot([mark.x], [mark.y], "o", color=STYLES.get(mark.curve, {}).get("color", "k"),
                 markersize=4)
         above = mark.curve == "wang2021"   # the paper's values above, the others below
@@ -86,8 +88,7 @@ def plot_paper_trend(data: FigureData, ax: Any = None, curve: str = "wang2021") 
     ax = _axes(ax)
     line = data.curve(curve)
     ax.plot(line.x, line.y, label=line.label, **STYLES.get(curve, {}))
-    _marks(ax, FigureData(data.key, data.title, data.xlabel, data.ylabel, (line,),
-                          data.caption, tuple(m for m in data.marks if m.curve == curve)))
+    _marks(ax, [m for m in data.marks if m.curve == curve])
     ax.set_xlabel(data.xlabel, **PLAIN)
     ax.set_ylabel(f"{data.ylabel} (zoom)", **PLAIN)
     ax.set_title("the paper's equations alone", **PLAIN)

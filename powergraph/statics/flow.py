@@ -30,8 +30,6 @@ from powergraph.records import record
 if TYPE_CHECKING:
     import networkx as nx
 
-    from powergraph.statics.result import ElementFlow, PowerFlowResult
-
 MOTOR, GENERATOR, LOSS, GROUND = "motor", "generator", "loss", "ground"
 BODY, FRAME = "body", "frame"
 MACHINE, BUS, BATTERY = "machine", "bus", "battery"

@@ -3,13 +3,10 @@ buses, the electrical path's share of the power reaching the outputs, and whethe
 split is negative (power circulating through a bus)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from powergraph.format import POWER_UNITS, aligned_table, format_column
 from powergraph.statics.flow import BUS, Node, _reaches
-
-if TYPE_CHECKING:   # pragma: no cover
-    from powergraph.statics.result import PowerFlowResult
 
 
 def boundary_powers(result: "PowerFlowResult") -> list[float]:

@@ -20,16 +20,13 @@ True
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from typing import Any, Iterable, Sequence
 
 import numpy as np
 
 from powergraph.errors import Caveat
 from powergraph.records import record
 from powergraph.statics.directions import nan_max
-
-if TYPE_CHECKING:   # pragma: no cover
-    from powergraph.statics.result import PowerFlowResult
 
 #: When every port's power is at or below this (W), no power passes.
 ABSOLUTE_ZERO = 1e-12

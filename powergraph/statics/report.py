@@ -1,4 +1,8 @@
-"""The JSON object and the readable text report of ``powergraph solve`` (docs/format.md)."""
+"""The JSON object and the readable text report of ``powergraph solve`` (docs/format.md).
+
+Works on the result it is given: it never imports :mod:`powergraph.statics.result`, whose
+methods import this module (the annotations name the type as text).
+"""
 from __future__ import annotations
 
 import math
@@ -8,7 +12,6 @@ from typing import Any
 from powergraph.format import column, power_unit, ratio_text, table
 from powergraph.statics.machine_report import (boundary_powers, machine_dict, machine_lines,
                                              machine_losses)
-from powergraph.statics.result import PowerFlowResult
 from powergraph.statics.verdicts import verdict_of
 from powergraph.units_si import RPM_PER_RAD_S
 

@@ -17,13 +17,10 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from powergraph.display import dataframe
 from powergraph.errors import UsageError
-
-if TYPE_CHECKING:
-    from powergraph.statics.result import PowerFlowResult
 
 #: The tables a solve offers, and the column each is indexed by in a DataFrame.
 TABLES = {"meshes": "link", "ports": "port", "flows": None, "speeds": "component"}

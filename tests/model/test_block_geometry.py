@@ -15,8 +15,8 @@ from powergraph.model.block_geometry import (
     NeedleGearGeometry,
     PlanetFrame1Geometry,
     PlanetFrame2Geometry,
-    validate_geometry,
 )
+from powergraph.model.blocks import validate_geometry
 
 PATH = "components.4.geometry"
 

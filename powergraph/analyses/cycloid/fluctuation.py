@@ -121,6 +121,18 @@ class CycloidFluctuation(Displayed):
                              np.concatenate([[after], ratio[inside], [before]])))
         return segments
 
+    def deviation_segments(self) -> list[tuple[int, np.ndarray, np.ndarray]]:
+        """``(pin, crank angles, Δi in %)`` of each contact segment (paper Eq. 11).
+
+        Returns
+        -------
+        list of tuple
+            :meth:`contact_segments` with each ratio as its deviation
+            :func:`deviation_percent` from ``ratio_nominal``.
+        """
+        return [(pin, angle, deviation_percent(ratio, self.ratio_nominal))
+                for pin, angle, ratio in self.contact_segments()]
+
     def text_report(self) -> str:
         """The readable report (what the command line prints)."""
         return stage_text(self)

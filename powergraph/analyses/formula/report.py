@@ -1,9 +1,13 @@
-"""Readable and LaTeX reports of a :class:`FormulaResult` (``powergraph formula``)."""
+"""Readable and LaTeX reports of a :class:`FormulaResult` (``powergraph formula``).
+
+Works on the result it is given (its formulas, ``evaluate()``, ``latex()``, ``values``):
+it never imports :mod:`powergraph.analyses.formula.result`, whose ``text_report()``
+imports this module (the annotations name the type as text).
+"""
 from __future__ import annotations
 
 from powergraph.analyses.formula.readable import display
-from powergraph.analyses.formula.result import FormulaResult, latex_names
-from powergraph.analyses.formula.symbols import EFFICIENCY, RATIO, TEETH
+from powergraph.analyses.formula.symbols import EFFICIENCY, RATIO, TEETH, latex_names
 
 
 def _meaning(result: FormulaResult, name: str) -> str:

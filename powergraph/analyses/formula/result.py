@@ -10,25 +10,12 @@ import sympy as sp
 
 from powergraph.analyses.formula.compiled import CompiledFormula, compile_formula
 from powergraph.analyses.formula.readable import display
-from powergraph.analyses.formula.symbols import SymbolInfo, values_of
+from powergraph.analyses.formula.symbols import SymbolInfo, latex_names, values_of
 from powergraph.model.spec import Model
 from powergraph.records import record
 
 _FLIP = {">": "<", "<": ">", "!=": "!=", "=": "="}
 _LATEX_RELATION = {">": ">", "<": "<", "!=": r"\neq", "=": "="}
-
-
-def latex_names(symbols: Mapping[str, sp.Symbol],
-                info: Mapping[str, SymbolInfo]) -> dict[sp.Symbol, str]:
-    """LaTeX for each symbol: ``z_{sun}``, ``\\eta_{0}``, ``i_{3}``."""
-    out = {}
-    for name, symbol in symbols.items():
-        prefix, _, ident = name.partition("_")
-        head = r"\eta" if prefix == "eta" else prefix
-        ident = ident.replace("_", r"\_")
-        out[symbol] = f"{head}_{{{ident}}}" if len(ident) <= 1 or ident.isdigit() \
-            else f"{head}_{{\\mathrm{{{ident}}}}}"
-    return out
 
 
 @record

@@ -83,6 +83,38 @@ def values_of(info: Mapping[str, SymbolInfo]) -> dict[str, float]:
     return {name: i.value for name, i in info.items()}
 
 
+def latex_names(symbols: Mapping[str, sp.Symbol],
+                info: Mapping[str, SymbolInfo]) -> dict[sp.Symbol, str]:
+    r"""LaTeX for each symbol: ``z_{sun}``, ``\eta_{0}``, ``i_{3}``.
+
+    Parameters
+    ----------
+    symbols : mapping
+        ``{name: sympy Symbol}``.
+    info : mapping
+        ``{name: SymbolInfo}`` (not read: the name says the kind).
+
+    Returns
+    -------
+    dict
+        ``{Symbol: LaTeX}``.
+
+    Examples
+    --------
+    >>> z, eta = sp.Symbol("z_sun"), sp.Symbol("eta_0")
+    >>> sorted(latex_names({"z_sun": z, "eta_0": eta}, {}).values())
+    ['\\eta_{0}', 'z_{\\mathrm{sun}}']
+    """
+    out = {}
+    for name, symbol in symbols.items():
+        prefix, _, ident = name.partition("_")
+        head = r"\eta" if prefix == "eta" else prefix
+        ident = ident.replace("_", r"\_")
+        out[symbol] = f"{head}_{{{ident}}}" if len(ident) <= 1 or ident.isdigit() \
+            else f"{head}_{{\\mathrm{{{ident}}}}}"
+    return out
+
+
 def _identifier(text: str) -> str:
     return re.sub(r"\W", "_", text, flags=re.ASCII)
 

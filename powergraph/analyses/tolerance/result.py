@@ -55,10 +55,26 @@ class ToleranceResult(Displayed):
 
     def _records(self) -> list[dict[str, Any]]:
         """One row per output: its unit and statistics."""
-        return [{"output": name, "unit": LABELS.get(name, (name, ""))[1] or "-",
+        return [{"output": name, "unit": self.output_label(name)[1] or "-",
                  **{k: s.get(k) for k in ("mean", "sd", *QUANTILES, "min", "max")}}
                 for name, s in self.outputs.items()]
 
+    @staticmethod
+    def output_label(output: str) -> tuple[str, str]:
+        """What an output is and its unit, for reports and figures.
+
+        Parameters
+        ----------
+        output : str
+            An output name (a key of ``values``).
+
+        Returns
+        -------
+        tuple of str
+            ``(what, unit)``: ``("lost motion", "arcmin")``; ``(output, "")`` for a name
+            without a label.
+        """
+        return LABELS.get(output, (output, ""))
 
     @property
     def primary(self) -> str | None:
@@ -94,7 +110,7 @@ class ToleranceResult(Displayed):
         header = ["output", "mean", "sd", *QUANTILES, "max"]
         rows = [header]
         for name, s in self.outputs.items():
-            label, unit = LABELS.get(name, (name, ""))
+            label, unit = self.output_label(name)
             rows.append([f"{label}{f' ({unit})' if unit else ''}",
                          *(_num(s[k]) for k in ("mean", "sd", *QUANTILES, "max"))])
             if s.get("failed"):
@@ -107,7 +123,7 @@ class ToleranceResult(Displayed):
                 lines.append(f"  {y.spec.text:<28} {100 * y.fraction:8.4f} %   "
                              f"[{100 * low:.4f}, {100 * high:.4f}] %")
         for output in self.sensitivity:
-            lines += ["", f"Sobol indices of {LABELS.get(output, (output,))[0]} "
+            lines += ["", f"Sobol indices of {self.output_label(output)[0]} "
                           f"(SALib, N = {self.sobol_samples}), by total index"]
             rows = [["PATH", "what", "first", "total"]]
             rows += [[p, self.labels.get(p, ""), _index(s["first"]), _index(s["total"])]

@@ -38,148 +38,20 @@ and the loss sinks under elements are nodes of kinds no flow-graph node has (``w
 """
 from __future__ import annotations
 
-from dataclasses import field
 from typing import Mapping
 
 import networkx as nx
 import numpy as np
 
-from powergraph.plot.layout.geometry import (Box, Shape, TextSize, estimate_text_size,
-                                               head_polygon, trim_end)
-from powergraph.plot.layout.nodes import NodeMap
+from powergraph.plot.layout.geometry import TextSize, estimate_text_size
+from powergraph.plot.layout.parts import (LOSS_STUB, WAYPOINT, EdgeRoute, FlowLayout,
+                                            LayoutStyle, NodePlace, Skeleton)
+from powergraph.plot.layout.place import place
 from powergraph.plot.layout.view import FlowView
-from powergraph.records import record
-from powergraph.statics.flow import LOSS, Flow, Node
+from powergraph.statics.flow import LOSS, Node
 
-WAYPOINT, LOSS_STUB = "waypoint", "loss stub"
-
-
-@record
-class LayoutStyle:
-    """Sizes in points. ``font_size`` is the node font; labels use ``label_scale`` of it."""
-
-    font_size: float = 9.0
-    label_scale: float = 0.85
-    layer_gap: float = 16.0
-    row_gap: float = 16.0
-    stub_length: float = 12.0
-    max_width: float = 9.0
-    min_width: float = 0.7
-    zero_width: float = 0.8
-    port_spacing: float = 5.0
-    waypoint_height: float = 6.0
-    margin: float = 6.0
-    attempts: int = 8
-
-    @property
-    def label_size(self) -> float:
-        return self.font_size * self.label_scale
-
-    def head(self, width: float) -> tuple[float, float]:
-        """Arrowhead (length, half width) in points for an arrow ``width`` points wide."""
-        return (5.0 + 0.7 * width, 2.8 + 0.6 * width)
-
-
-@record
-class NodePlace:
-    """A drawn node: its symbol centred at ``(x, y)``, its caption underneath if any;
-    ``kind`` is the kind drawn (a held body is drawn as ``frame``)."""
-
-    node: Node
-    kind: str
-    x: float
-    y: float
-    shape: Shape
-    layer: int
-
-    @property
-    def name(self) -> str:
-        return self.node.name
-
-    @property
-    def box(self) -> Box:
-        return Box.around(self.x, self.y, self.shape.width, self.shape.height)
-
-    @property
-    def caption_box(self) -> Box | None:
-        if not self.shape.caption:
-            return None
-        w, h = self.shape.caption_size
-        return Box.around(self.x, self.y - self.shape.height / 2 - 2.0 - h / 2, w, h)
-
-    @property
-    def boxes(self) -> tuple[Box, ...]:
-        caption = self.caption_box
-        return (self.box,) if caption is None else (self.box, caption)
-
-
-@record
-class EdgeRoute:
-    """One arrow: the path from ``flow.source`` to ``flow.target`` and its label spot."""
-
-    flow: Flow
-    vertices: tuple
-    codes: tuple
-    width: float
-    zero: bool
-    loop: bool
-    loss: bool
-    label: str
-    label_xy: tuple[float, float]
-    label_box: Box
-    placed: bool = True
-    head_size: tuple[float, float] = (0.0, 0.0)
-
-    @property
-    def key(self) -> tuple[Node, Node]:
-        return self.flow.key
-
-    @property
-    def head(self) -> tuple[tuple[float, float], ...] | None:
-        """The arrowhead triangle (tip, left, right) in points; None for a 0 W link."""
-        if self.zero:
-            return None
-        return head_polygon(self.vertices, self.codes, *self.head_size)
-
-    @property
-    def shaft(self) -> tuple[tuple, tuple]:
-        """Vertices and codes of the line, stopped where the arrowhead begins."""
-        if self.zero:
-            return self.vertices, self.codes
-        return trim_end(self.vertices, self.codes, self.head_size[0] * 0.9)
-
-
-@record
-class FlowLayout:
-    """Positions of every node, arrow and label of one diagram (points)."""
-
-    view: FlowView
-    nodes: Mapping[Node, NodePlace]
-    edges: tuple[EdgeRoute, ...]
-    bounds: Box
-    style: LayoutStyle
-    spread: float = 1.0
-
-    @property
-    def clean(self) -> bool:
-        """True when every label found a spot clear of nodes and other labels."""
-        return all(edge.placed for edge in self.edges)
-
-    def edge(self, source: Node | str, target: Node | str) -> EdgeRoute:
-        """The arrow from ``source`` to ``target`` (nodes, or names when unambiguous)."""
-        return NodeMap({e.key: e for e in self.edges})[(source, target)]
-
-
-@record
-class Skeleton:
-    """The combinatorial layout: layers (top to bottom), arrow chains, loss stubs."""
-
-    layers: tuple[tuple[Node, ...], ...]
-    layer_of: Mapping[Node, int]
-    chains: Mapping[int, tuple[Node, ...]]       # flow index -> nodes left to right
-    reversed: frozenset                           # flows drawn right to left
-    stubs: Mapping[int, Node] = field(default_factory=dict)  # loss flow -> stub node
-    side: frozenset = frozenset()                 # flows between nodes of one layer
+__all__ = ["LOSS_STUB", "WAYPOINT", "EdgeRoute", "FlowLayout", "LayoutStyle", "NodePlace",
+           "Skeleton", "layout_flow", "skeleton_of"]
 
 
 def layout_flow(view: FlowView, text_size: TextSize = estimate_text_size,
@@ -194,8 +66,6 @@ def layout_flow(view: FlowView, text_size: TextSize = estimate_text_size,
         one, the default estimates generously.
     style : LayoutStyle, optional
     """
-    from powergraph.plot.layout.place import place
-
     skeleton = skeleton_of(view)
     layout = None
     for attempt in range(style.attempts):

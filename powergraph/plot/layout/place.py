@@ -1,6 +1,7 @@
 """Coordinates, arrow paths and label spots for a :class:`Skeleton`.
 
-See :mod:`powergraph.plot.layout.layout` for the steps.
+See :mod:`powergraph.plot.layout.layout` for the steps (it calls :func:`place`; the
+records both build are in :mod:`powergraph.plot.layout.parts`).
 
 Examples
 --------
@@ -21,8 +22,8 @@ from powergraph.plot.layout.geometry import (
     CURVE4, MOVETO, Box, Shape, TextSize, bezier_chain, bounds, estimate_text_size, head_box,
     label_candidates, node_shape, place_label, port, port_offsets, sample, segments,
     straight, stub_candidates)
-from powergraph.plot.layout.layout import (WAYPOINT, EdgeRoute, FlowLayout, LayoutStyle,
-                                             NodePlace, Skeleton)
+from powergraph.plot.layout.parts import (WAYPOINT, EdgeRoute, FlowLayout, LayoutStyle,
+                                            NodePlace, Skeleton)
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.view import FlowView
 from powergraph.statics.flow import Node
