@@ -1,7 +1,8 @@
-"""A duty cycle of 10^5 operating points through ``powergraph.analyses.cycle``: a plain
-train's rows go through the compiled sweep; a loop of single solves over the same rows
-is timed in the same run (on a sample, extrapolated, unless ``--full``), and a hybrid
-(machines on a bus: single solves per row) on a smaller sample. The result's columns
+"""A duty cycle of 10^5 operating points through ``powergraph.analyses.cycle``, a plain
+train's and a hybrid's, each against a loop of single solves over the same rows timed in
+the same run (on a sample, extrapolated, unless ``--full``): the plain train's rows go
+through the compiled sweep, the hybrid's (the THS-II, machines on a bus) through the
+sweep with the bus balance (``powergraph.analyses.cycle_hybrid``). The result's columns
 are weighed too (bytes per row: issue 34; docs/performance.md has the figures of the
 command line, wall time and peak memory).
 
@@ -17,7 +18,9 @@ from pathlib import Path
 import numpy as np
 
 import powergraph as pg
-from powergraph.analyses.cycle import cycle
+from powergraph.analyses.cycle import _single_rows, cycle
+from powergraph.analyses.cycle_hybrid import METHOD
+from powergraph.analyses.cycle_points import read_points
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -59,9 +62,6 @@ def main(argv: list[str] | None = None) -> int:
 
     n_single = args.points if args.full else min(args.sample, args.points)
     head = "\n".join(text.splitlines()[: n_single + 1]) + "\n"
-    from powergraph.analyses.cycle import _single_rows
-    from powergraph.analyses.cycle_points import read_points
-
     points = read_points(io.StringIO(head), model)
     start = time.perf_counter()
     rows = _single_rows(model, points)
@@ -82,12 +82,36 @@ def main(argv: list[str] | None = None) -> int:
           "durations and file lines shared with the points)")
 
     ths = pg.load_model(ROOT / "models" / "ths2_power_split.yaml")
-    n_h = min(args.sample, args.points)
+    text = _hybrid_points(args.points, rng)
     start = time.perf_counter()
-    hybrid = cycle(ths, io.StringIO(_hybrid_points(n_h, rng)))
-    per_row = (time.perf_counter() - start) / n_h
-    print(f"{n_h} points, THS-II hybrid (single solves with the bus balance): "
-          f"{per_row * 1e3:.2f} ms per row, cycle efficiency {hybrid.efficiency:.4f}")
+    hybrid = cycle(ths, io.StringIO(text))
+    cold = time.perf_counter() - start        # the first call of the process
+    start = time.perf_counter()
+    hybrid = cycle(ths, io.StringIO(text))
+    batched = time.perf_counter() - start
+    assert hybrid.method == METHOD and not hybrid.failed.any()
+    head = "\n".join(text.splitlines()[: n_single + 1]) + "\n"
+    points = read_points(io.StringIO(head), ths)
+    start = time.perf_counter()
+    rows = _single_rows(ths, points)
+    per_row = (time.perf_counter() - start) / n_single
+    single = per_row * args.points
+    worst = max(float(np.max(np.abs(a[:n_single] - b) / np.maximum(np.abs(b), 1e-300)))
+                for a, b in
+                [(hybrid.power_out, rows.power_out), (hybrid.loss, rows.loss),
+                 *((hybrid.losses[k], v) for k, v in rows.losses.items())])
+    same = (np.array_equal(hybrid.verdict_codes[:n_single], rows.verdict_codes)
+            and np.array_equal(hybrid.negative_split[:n_single], rows.negative_split))
+    print(f"{args.points} points, THS-II hybrid: cycle (sweep with bus balance) "
+          f"{batched:.2f} s, first call {cold:.2f} s (each call reads the points and "
+          f"compiles the train's sweep); loop of single solves {single:.0f} s "
+          f"({per_row * 1e3:.2f} ms per row"
+          f"{'' if args.full else ', extrapolated from ' + str(n_single)}); speed-up "
+          f"{single / batched:.0f}x ({single / cold:.0f}x on the first call); largest "
+          f"relative difference of a row's power out, loss or element loss {worst:.1e}; "
+          f"verdicts and negative splits {'the same' if same else 'DIFFERENT'}; "
+          f"{int(hybrid.negative_split.sum())} rows in a negative split, cycle efficiency "
+          f"{hybrid.efficiency:.4f}")
     return 0
 
 

@@ -3,10 +3,16 @@
 
 Rows of a plain train (no machines, no modes, no load-dependent losses) are evaluated at
 once by the compiled sweep (:mod:`powergraph.analyses.sweep`), its arrays becoming the
-result's columns; the others — machines on buses, a ``mode`` column, friction laws and
-bearing losses — by one single solve per row, into preallocated columns.
-``CycleResult.method`` says which; a row the sweep does not solve is solved alone, for
-its reason.
+result's columns (``method`` ``sweep``). Rows of a train with machines on buses (and no
+``mode`` column, no load-dependent losses) are solved together too
+(:mod:`powergraph.analyses.cycle_hybrid`, ``sweep with bus balance``): the single solve's
+Newton iteration on the bus balances, over every row at once, each step one call of the
+sweep — the THS-II's 10^5 rows in 2-3 s against 18-40 min for a loop of single solves,
+660-860 times faster in one run of ``python benchmarks/cycle.py --points 100000 --sample
+500`` (docs/performance.md), every row the same as its single solve to about 1e-12.
+The others — a ``mode`` column, friction laws and bearing losses — take one single solve
+per row, into preallocated columns (``single solves``). A row the batched evaluators do
+not solve is solved alone, for its reason.
 
 The result holds columns (one numpy array per quantity over the rows: tens of bytes per
 row, issue 34), not a record per row; ``result.rows[i]`` builds row ``i`` as a
@@ -58,7 +64,7 @@ class CycleResult:
     Attributes
     ----------
     name, method : str
-        The model's name; ``sweep`` or ``single solves``.
+        The model's name; ``sweep``, ``sweep with bus balance`` or ``single solves``.
     durations : ndarray
         Each row's duration, s.
     lines : ndarray of int
@@ -308,11 +314,16 @@ def cycle(model: Model, points: IO[str] | str | os.PathLike | Points,
     if not points.columns or not len(points):
         raise UsageError(f"{points.source}: needs a PORT.speed, PORT.power or PORT.torque "
                          "column and a row")
+    from powergraph.analyses.cycle_hybrid import METHOD, batchable, hybrid_rows
+
     result = None
-    if sweepable(model, points):
+    batched = (("sweep", sweep_rows) if sweepable(model, points) else
+               (METHOD, hybrid_rows) if batchable(model, points) else None)
+    if batched is not None:
+        method, rows = batched
         try:
-            result = CycleResult.of(model.name, "sweep", points,
-                                    sweep_rows(model, points, keep_going))
+            result = CycleResult.of(model.name, method, points,
+                                    rows(model, points, keep_going))
         except RowError:
             raise
         except (UsageError, ModelError, *NUMERICAL):

@@ -123,6 +123,23 @@ class Columns:
             for label, values in losses.items():
                 np.copyto(self._loss_column(label)[part], values, where=solved)
 
+    def put(self, rows: np.ndarray, power_in: np.ndarray, power_out: np.ndarray,
+            loss: np.ndarray, efficiencies: np.ndarray, verdicts: np.ndarray,
+            losses: Mapping[str, np.ndarray], electrical_share: np.ndarray,
+            negative_split: np.ndarray) -> None:
+        """The rows ``rows`` (indices), solved at once with machines: their values from
+        the arrays over them (a loss NaN in a row without that element)."""
+        for target, values in ((self.power_in, power_in), (self.power_out, power_out),
+                               (self.loss, loss), (self.efficiencies, efficiencies),
+                               (self.verdict_codes, verdicts),
+                               (self.electrical_share, electrical_share),
+                               (self.negative_split, negative_split)):
+            target[rows] = values
+        self.with_machines[rows] = True
+        for label, values in losses.items():
+            if label in self.losses or not np.isnan(values).all():
+                self._loss_column(label)[rows] = values
+
     def set(self, i: int, power_in: float, power_out: float, loss: float,
             efficiency: float | None, verdict: str, losses: Mapping[str, float],
             electrical_share: float | None = None, negative_split: bool | None = None,

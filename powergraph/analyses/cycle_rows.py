@@ -1,7 +1,11 @@
 """The rows of a duty cycle (:mod:`powergraph.analyses.cycle`): each row's powers, losses
 and verdict, filled into :class:`~powergraph.analyses.cycle_columns.Columns` — at once from
 the compiled sweep's arrays for a plain train (a row it does not solve is solved alone, for
-its reason), or by one single solve per row (in the row's mode, the freewheels decided)."""
+its reason), or by one single solve per row (in the row's mode, the freewheels decided).
+A train with machines on buses has its rows solved together by
+:mod:`powergraph.analyses.cycle_hybrid` (10^5 THS-II rows in 2-3 s, where a single solve
+takes 11-24 ms a row: docs/performance.md), which solves here, alone, the rows it
+cannot."""
 from __future__ import annotations
 
 import math
@@ -44,7 +48,7 @@ def sweep_rows(model: Model, points: Points, keep_going: bool) -> Columns:
     alone, for its reason."""
     from powergraph.analyses.sweep import CompiledSweep
 
-    base = _cleared(model, points)
+    base = cleared(model, points)
     paths = [path for path, _, _ in points.columns]
     evaluate = CompiledSweep(base, paths)
     columns, unsolved = Columns(len(points)), []
@@ -53,7 +57,7 @@ def sweep_rows(model: Model, points: Points, keep_going: bool) -> Columns:
                           quiet=True)
         unsolved.append(_fill(columns, part, result, model))
     for i in np.concatenate(unsolved).tolist():
-        _single_row(base, points, i, keep_going, columns)
+        single_row(base, points, i, keep_going, columns)
     return columns
 
 
@@ -112,7 +116,7 @@ def _finite(values) -> np.ndarray:
     return np.where(np.isfinite(array), array, 0.0) + 0.0
 
 
-def _cleared(model: Model, points: Points) -> Model:
+def cleared(model: Model, points: Points) -> Model:
     """The model with the loads of the ports the points load cleared (a port takes
     power or torque, not both)."""
     for _, index, kind in points.columns:
@@ -124,14 +128,14 @@ def _cleared(model: Model, points: Points) -> Model:
 def single_rows(model: Model, points: Points, keep_going: bool = True) -> Columns:
     """One single solve per row, into preallocated columns; without ``keep_going`` the
     first row that cannot be solved is an error."""
-    base = _cleared(model, points)
+    base = cleared(model, points)
     columns = Columns(len(points))
     for i in range(len(points)):
-        _single_row(base, points, i, keep_going, columns)
+        single_row(base, points, i, keep_going, columns)
     return columns
 
 
-def _single_row(base: Model, points: Points, i: int, keep_going: bool,
+def single_row(base: Model, points: Points, i: int, keep_going: bool,
                 columns: Columns) -> None:
     """Row ``i`` by the single solve (``base``: the model with the loaded ports cleared),
     into ``columns``."""

@@ -26,6 +26,7 @@ Examples
 from __future__ import annotations
 
 import csv
+import functools
 import math
 import os
 import re
@@ -61,14 +62,48 @@ class EfficiencyTable:
     torques: tuple[float, ...]
     values: tuple[tuple[float, ...], ...]
 
-    def at(self, speed: float, torque: float) -> tuple[float, bool]:
+    def at(self, speed, torque):
         """The efficiency at ``|speed|`` (rad/s) and ``|torque|`` (N·m), and whether the
-        point lies on the grid (else the nearest edge's value is returned)."""
-        s, t = abs(float(speed)), abs(float(torque))
-        inside = (self.speeds[0] <= s <= self.speeds[-1]
-                  and self.torques[0] <= t <= self.torques[-1])
-        along_torque = [np.interp(t, self.torques, row) for row in self.values]
-        return float(np.interp(s, self.speeds, along_torque)), inside
+        point lies on the grid (else the nearest edge's value is returned): floats, or
+        arrays over many points (the same rule, one point or many).
+
+        >>> table = EfficiencyTable("mg.csv", (0.0, 100.0), (0.0, 10.0), ((0.5, 1.0), (0.5, 1.0)))
+        >>> eta, on_map = table.at(np.array([10.0, -10.0]), np.array([2.5, 20.0]))
+        >>> eta.tolist(), on_map.tolist()
+        ([0.625, 1.0], [True, False])
+        """
+        s, t = np.abs(np.asarray(speed, dtype=float)), np.abs(np.asarray(torque, dtype=float))
+        speeds, torques, values = _arrays(self)
+        inside = ((speeds[0] <= s) & (s <= speeds[-1])
+                  & (torques[0] <= t) & (t <= torques[-1]))
+        i, a = _cell(speeds, s)
+        j, b = _cell(torques, t)
+        low = _between(values[i, j], values[i, j + 1], b)
+        high = _between(values[i + 1, j], values[i + 1, j + 1], b)
+        eta = _between(low, high, a)
+        if eta.ndim == 0:
+            return float(eta), bool(inside)
+        return eta, inside
+
+
+@functools.lru_cache(maxsize=32)
+def _arrays(table: EfficiencyTable) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The table's speeds, torques and values as arrays (kept for its next points)."""
+    return (np.array(table.speeds), np.array(table.torques), np.array(table.values))
+
+
+def _cell(grid: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The interval of ``grid`` holding ``x`` (the first or last beyond the grid) and the
+    fraction of the way along it, clipped to [0, 1] (beyond the grid: its edge value)."""
+    k = np.clip(np.searchsorted(grid, x, side="right") - 1, 0, len(grid) - 2)
+    with np.errstate(invalid="ignore"):
+        fraction = np.clip((x - grid[k]) / (grid[k + 1] - grid[k]), 0.0, 1.0)
+    return k, fraction
+
+
+def _between(low, high, fraction):
+    """Linear interpolation, exact at both ends: ``low`` at 0, ``high`` at 1."""
+    return (1.0 - fraction) * low + fraction * high
 
 
 def read_efficiency_table(name: str, folder: Path | None, path: str) -> EfficiencyTable:

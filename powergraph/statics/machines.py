@@ -37,27 +37,43 @@ RTOL = 1e-11
 SPEED_RTOL = 1e-9
 
 
-def electrical_power(power: float, efficiency: float) -> float:
+def electrical_power(power, efficiency):
     """Electrical power a machine draws from its bus for mechanical power ``power`` into
-    the train: ``P/η`` motoring, ``P·η`` generating.
+    the train: ``P/η`` motoring, ``P·η`` generating. Floats, or arrays over many points.
 
     >>> electrical_power(900.0, 0.9), electrical_power(-1000.0, 0.9)
     (1000.0, -900.0)
+    >>> electrical_power(np.array([900.0, -1000.0]), 0.9).tolist()
+    [1000.0, -900.0]
     """
-    return power / efficiency if power > 0 else power * efficiency
+    with np.errstate(divide="ignore", invalid="ignore"):
+        drawn = np.where(np.greater(power, 0), np.divide(power, efficiency),
+                         np.multiply(power, efficiency))
+    return float(drawn) if drawn.ndim == 0 else drawn
 
 
-def machine_efficiency(port: Port, speed: float, torque: float) -> tuple[float, bool]:
+def machine_efficiency(port: Port, speed, torque):
     """A machine port's efficiency at ``speed`` (rad/s) and ``torque`` (N·m): its number,
     or its map's value there; and whether the point lies on the map (always True for a
-    number).
+    number). Floats, or arrays over many points (then arrays of that shape).
 
     >>> machine_efficiency(Port(0, "S", "machine", efficiency=0.9, bus="dc"), 10.0, 2.0)
     (0.9, True)
     """
     if isinstance(port.efficiency, EfficiencyTable):
         return port.efficiency.at(speed, torque)
-    return port.efficiency, True
+    shape = np.broadcast_shapes(np.shape(speed), np.shape(torque))
+    if not shape:
+        return port.efficiency, True
+    return np.full(shape, float(port.efficiency)), np.ones(shape, dtype=bool)
+
+
+def over_max_speed(port: Port, speed):
+    """Whether a machine at ``speed`` (rad/s; a float or an array) runs beyond its
+    ``max_speed``, by more than round-off (:data:`SPEED_RTOL`); False without one."""
+    if port.max_speed is None:
+        return np.zeros(np.shape(speed), dtype=bool) if np.ndim(speed) else False
+    return np.abs(speed) > port.max_speed * (1 + SPEED_RTOL)
 
 
 @record
@@ -193,18 +209,54 @@ def _with_torques(base: Model, indices, torques) -> Model:
 
 
 def _residuals(result, balanced: list) -> np.ndarray:
-    drawn = _drawn(result)
-    return np.array([drawn.get(bus.name, 0.0) - bus.battery for bus in balanced])
-
-
-def _drawn(result) -> dict[str, float]:
-    out: dict[str, float] = {}
+    drawn = []
     for flow in result.ports:
         port = result.model.ports[flow.index]
         if port.is_machine:
             efficiency = machine_efficiency(port, flow.speed, flow.torque)[0]
-            out[port.bus] = out.get(port.bus, 0.0) + electrical_power(flow.power, efficiency)
-    return out
+            drawn.append((port.bus, electrical_power(flow.power, efficiency)))
+    return np.array(bus_residuals(drawn, balanced))
+
+
+def bus_residuals(drawn, balanced: list) -> list:
+    """``Σ P_e − P_b`` of each balanced bus, from ``(bus, P_e)`` of each machine in the
+    ports' order (floats, or arrays over many points)."""
+    out: dict[str, Any] = {}
+    for bus, power in drawn:
+        out[bus] = out.get(bus, 0.0) + power
+    return [out.get(bus.name, 0.0) - bus.battery for bus in balanced]
+
+
+def balance_scale(powers, balanced: list):
+    """The power the bus residuals are judged against: the largest port power (the last
+    axis of ``powers``), battery power or 1 W."""
+    batteries = max([abs(bus.battery) for bus in balanced], default=0.0)
+    return np.maximum(np.max(np.abs(powers), axis=-1, initial=1.0), batteries)
+
+
+def settled(r, scale):
+    """The bus residuals ``r`` (last axis: the buses) are within :data:`RTOL` of
+    ``scale``."""
+    return np.max(np.abs(r), axis=-1, initial=0.0) <= RTOL * scale
+
+
+def difference_steps(x, scale, speeds):
+    """The torque steps of the slopes by forward differences."""
+    return np.maximum(1e-7 * np.abs(x), 1e-7 * np.asarray(scale)[..., None] / np.abs(speeds))
+
+
+def newton_step(jac, r):
+    """``-J⁻¹ r`` (stacks of them: ``jac`` ``(..., B, B)``, ``r`` ``(..., B)``);
+    ``LinAlgError`` where ``jac`` is singular."""
+    return -np.linalg.solve(jac, r[..., None])[..., 0]
+
+
+def broyden_update(jac, dx, dr):
+    """Broyden's update of the slopes ``jac`` after the step ``dx`` changed the
+    residuals by ``dr`` (stacks of them, as :func:`newton_step`)."""
+    predicted = np.matmul(jac, dx[..., None])[..., 0]
+    return jac + (dr - predicted)[..., :, None] * dx[..., None, :] \
+        / np.sum(dx * dx, axis=-1)[..., None, None]
 
 
 def _newton(base: Model, balanced: list, unknowns: list[int], kin, plain_solve, result):
@@ -213,24 +265,23 @@ def _newton(base: Model, balanced: list, unknowns: list[int], kin, plain_solve, 
     within one piece lands on the root; across a kink the secant corrects it)."""
     x = np.zeros(len(unknowns))
     speeds = np.array([kin.speed(base.ports[i].component) for i in unknowns])
-    scale = max([abs(p.power) for p in result.ports] + [abs(b.battery) for b in balanced]
-                + [1.0])
+    scale = float(balance_scale(np.array([p.power for p in result.ports]), balanced))
     r = _residuals(result, balanced)
     jac = None
     for _ in range(MAX_STEPS):
-        if np.max(np.abs(r), initial=0.0) <= RTOL * scale or result.lock is not None:
+        if settled(r, scale) or result.lock is not None:
             return result
         if jac is None:
             jac = _slopes(base, balanced, unknowns, plain_solve, x, r,
-                          np.maximum(1e-7 * np.abs(x), 1e-7 * scale / np.abs(speeds)))
+                          difference_steps(x, scale, speeds))
         try:
-            dx = -np.linalg.solve(jac, r)
+            dx = newton_step(jac, r)
         except np.linalg.LinAlgError:
             break
         x = x + dx
         result = plain_solve(_with_torques(base, unknowns, x))
         new = _residuals(result, balanced)
-        jac = jac + np.outer(new - r - jac @ dx, dx) / float(dx @ dx)
+        jac = broyden_update(jac, dx, new - r)
         r = new
     raise StaticsError("the bus balance did not settle (no machine torques meet the "
                        "battery powers)", "buses")
@@ -284,8 +335,7 @@ def machine_caveats(result) -> tuple[Caveat, ...]:
                  f"{port.path} (component {result.model.raw_id(port.component)})")
         if not machine.on_map:
             caveats.append(_outside_map(machine, port.efficiency, label, port.path))
-        if port.max_speed is not None and \
-                abs(machine.speed) > port.max_speed * (1 + SPEED_RTOL):
+        if over_max_speed(port, machine.speed):
             speed, top = abs(rpm(machine.speed)), rpm(port.max_speed)
             caveats.append(Caveat(
                 f"{label} runs at {speed:.6g} rpm, {speed - top:.4g} rpm above its "

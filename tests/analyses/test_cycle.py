@@ -1,5 +1,6 @@
 """Duty cycles: the totals are the single solves' powers times the rows' durations,
-through the compiled sweep (a plain train) and through single solves (machines, modes);
+through the compiled sweep (a plain train), the sweep with the bus balance (machines on
+buses: tests/analyses/test_cycle_hybrid_batch.py) and single solves (modes);
 issue 34: a row that cannot be solved is an error naming it, or with ``keep_going`` is
 left out of the totals, which count it."""
 from __future__ import annotations
@@ -82,12 +83,12 @@ def test_a_plain_train_cycle_goes_through_the_sweep_and_sums_the_single_solves()
     assert result.warned_rows == {"role-reversed": [2]}
 
 
-def test_a_hybrid_cycle_solves_row_by_row_and_sums_the_single_solves():
+def test_a_hybrid_cycle_sums_the_single_solves():
     csv = ("engine.speed [rpm],engine.power [kW],wheels.speed [rpm],time [s]\n"
            "2000,30,400,0\n1500,15,1400,10\n2500,40,200,15\n")
     model = pg.load_model(THS)
     result = cycle(model, io.StringIO(csv))
-    assert result.method == "single solves"
+    assert result.method == "sweep with bus balance"
     # time [s]: each row lasts until the next, the last as long as the one before
     assert [r.duration for r in result.rows] == [10.0, 5.0, 5.0]
     rows = [({0: {"speed": 2000 * RPM, "power": 30e3}, 3: {"speed": 400 * RPM}}, 10.0),

@@ -375,3 +375,21 @@ def test_issue34_a_map_of_only_its_header_is_refused_without_a_warning(tmp_path)
 def test_issue34_a_cell_over_the_csv_field_limit_is_refused(tmp_path) -> None:
     (tmp_path / "mg.csv").write_text(HEADER + "0,0," + "9" * 200_000 + "\n")
     assert "field larger than field limit" in refused(tmp_path)
+
+
+def test_the_map_over_arrays_of_points_is_the_map_at_each_point() -> None:
+    # one rule, a point or many (the batched duty cycle reads the maps over its rows)
+    import numpy as np
+
+    from powergraph.model.efficiency_table import EfficiencyTable
+
+    table = EfficiencyTable("mg.csv", speeds=(0.0, 100.0, 300.0), torques=(0.0, 10.0),
+                            values=((0.7, 0.8), (0.75, 0.9), (0.8, 0.95)))
+    speeds = np.array([0.0, 50.0, -100.0, 250.0, 300.0, 400.0, -1.0, 150.0])
+    torques = np.array([0.0, -5.0, 10.0, 2.5, 10.0, 3.0, 20.0, 10.0])
+    eta, on_map = table.at(speeds, torques)
+    assert [table.at(s, t) for s, t in zip(speeds.tolist(), torques.tolist())] == \
+        list(zip(eta.tolist(), on_map.tolist()))
+    assert table.at(100.0, 10.0) == (0.9, True)            # a grid point, exactly
+    assert table.at(400.0, 20.0) == (0.95, False)          # beyond both: the corner
+    assert eta[1] == pytest.approx((0.7 + 0.8 + 0.75 + 0.9) / 4, rel=1e-15)

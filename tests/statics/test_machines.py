@@ -293,3 +293,24 @@ def test_issue34_the_hybrid_docs_model_is_the_model_file_and_its_speeds_hold():
     warned = [w for w in backwards.warnings if w.code == "over-max-speed"]
     assert [w.path for w in warned] == ["ports[1].max_speed", "ports[2].max_speed"]
     assert f"runs at {mg1:.6g} rpm" in warned[0].message and f"{mg1:.6g}" in docs
+
+
+def test_the_machine_rules_over_arrays_are_the_rules_at_each_point() -> None:
+    # one rule, a point or many (the batched duty cycle applies them over its rows)
+    import numpy as np
+
+    from powergraph.model.spec import Port
+    from powergraph.statics.machines import (electrical_power, machine_efficiency,
+                                             over_max_speed)
+
+    powers = np.array([900.0, -1000.0, 0.0, 1e-300])
+    assert electrical_power(powers, 0.9).tolist() == \
+        [electrical_power(p, 0.9) for p in powers.tolist()]
+    assert electrical_power(powers, np.array([0.9, 0.5, 0.9, 0.5])).tolist() == \
+        [1000.0, -500.0, 0.0, 2e-300]
+    port = Port(0, "S", "machine", efficiency=0.9, bus="dc", max_speed=100.0)
+    eta, on_map = machine_efficiency(port, np.array([1.0, 2.0]), np.array([3.0, 4.0]))
+    assert eta.tolist() == [0.9, 0.9] and on_map.tolist() == [True, True]
+    speeds = np.array([100.0, -100.0 * (1 + 2e-9), 50.0])
+    assert over_max_speed(port, speeds).tolist() == \
+        [bool(over_max_speed(port, s)) for s in speeds.tolist()] == [False, True, False]
