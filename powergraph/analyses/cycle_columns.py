@@ -29,10 +29,10 @@ from typing import Any, Iterable, Mapping, Sequence
 import numpy as np
 
 from powergraph.records import record
+from powergraph.statics.verdicts import VERDICTS
 
-#: The verdicts of a row that was solved, by code; codes from ``len(VERDICTS)`` on are the
-#: ``error: ...`` texts of rows that could not be solved.
-VERDICTS = ("ok", "locked", "self-locking", "no power")
+#: Codes into :data:`VERDICTS` (``powergraph.statics.verdicts``) of a row that was solved;
+#: codes from ``len(VERDICTS)`` on are the ``error: ...`` texts of rows that could not be.
 OK, LOCKED, SELF_LOCKING, NO_POWER = range(4)
 FAILED = len(VERDICTS)
 

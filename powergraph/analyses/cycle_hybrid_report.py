@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from powergraph.analyses.cycle_columns import NO_POWER, OK, SELF_LOCKING, Columns
+from powergraph.analyses.cycle_columns import Columns
+from powergraph.statics.ports import capped
+from powergraph.statics.verdicts import verdict_codes
 from powergraph.analyses.cycle_rows import element_label
 from powergraph.analyses.cycle_train import PlainTrain, State, distinct_rows
 from powergraph.kinematics import element_stencil
@@ -41,14 +43,13 @@ def report(train: PlainTrain, state: State, rows: np.ndarray, columns: Columns) 
     machine_sum = sum(machine_loss[:, j] for j in range(len(machines)))
     loss = state.total_loss + machine_sum
     with np.errstate(all="ignore"):
-        efficiency = np.where(entering > 0, leaving / entering,
+        efficiency = np.where(entering > 0, capped(leaving / entering),
                               np.where(leaving == 0, np.nan, np.inf))
         fed_in = sum(state.raw[:, p.index] for p in model.inputs)
         fed_out = -sum(state.raw[:, p.index] for p in model.outputs) + 0.0
         formal = np.where(fed_in != 0, fed_out / fed_in, np.nan)
     silent = np.all(powers == 0, axis=1)          # every port's direction "none"
-    verdicts = np.where(~silent & ~(formal > 0), SELF_LOCKING,
-                        np.where((entering == 0) & (leaving == 0), NO_POWER, OK))
+    verdicts = verdict_codes(False, ~silent & ~(formal > 0), silent)
     losses = {}
     for k, element in enumerate(train.elements):
         values = state.losses[:, k]

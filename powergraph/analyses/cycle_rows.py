@@ -13,11 +13,11 @@ import math
 import numpy as np
 
 from powergraph.analyses.cycle_columns import CycleRow  # noqa: F401  (re-exported)
-from powergraph.analyses.cycle_columns import LOCKED, NO_POWER, OK, SELF_LOCKING, Columns
+from powergraph.analyses.cycle_columns import OK, Columns
 from powergraph.analyses.cycle_points import Points, as_dict
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
-from powergraph.statics.case import verdict_of
+from powergraph.statics.verdicts import verdict_codes, verdict_of
 
 #: Errors of a numerical procedure (numpy's warnings are errors under the command line).
 NUMERICAL = (FloatingPointError, OverflowError, RuntimeWarning)
@@ -88,8 +88,8 @@ def _fill(columns: Columns, part: slice, result, model: Model) -> np.ndarray:
     p_in, p_out = _finite(p_in), _finite(p_out)
     entering = np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0)
     leaving = np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0)
-    verdicts = np.where(locked, LOCKED, np.where(np.asarray(result.self_locking, bool),
-                        SELF_LOCKING, np.where(entering > 0, OK, NO_POWER)))
+    verdicts = verdict_codes(locked, np.asarray(result.self_locking, bool),
+                             (entering == 0) & (leaving == 0))
     efficiency = np.asarray(result.efficiency, dtype=float)
     columns.fill(part, solved, entering, leaving, _finite(total),
                  np.where(np.isfinite(efficiency), efficiency, np.nan), verdicts,

@@ -91,6 +91,7 @@ def _jit(function: Callable) -> Callable:
 MAX_TEETH = _paths.MAX_TEETH
 MAX_RATIO = _paths.MAX_RATIO
 SPEED_NOISE, FORCE_NOISE = _directions.SPEED_NOISE, _directions.FORCE_NOISE
+ROUND_OFF = _ports.ROUND_OFF
 nan_max = jit_nan_max = _jit(_directions.nan_max)
 element_stencil = jit_element_stencil = _jit(_elements.element_stencil)
 jit_driver_code = _jit(_directions.driver_code)
