@@ -252,9 +252,8 @@ def test_import_graph_has_no_cycles(graph) -> None:
     assert nx.is_directed_acyclic_graph(graph)
 
 
-#: Circles through lazy or TYPE_CHECKING imports still allowed, each a set of modules (the
-#: duty cycle's result and report: being reworked on its own).
-CIRCLES_ALLOWED = ({"powergraph.analyses.cycle", "powergraph.analyses.cycle_report"},)
+#: Circles through lazy or TYPE_CHECKING imports still allowed, each a set of modules.
+CIRCLES_ALLOWED: tuple = ()
 
 
 def circles() -> list[list[str]]:

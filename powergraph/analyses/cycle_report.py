@@ -5,15 +5,12 @@ from __future__ import annotations
 import csv
 import io
 from math import isnan
-from typing import TYPE_CHECKING, Any, Iterator
+from typing import Any, Iterator
 
 import numpy as np
 
 from powergraph.analyses.cycle_columns import LOCKED, SELF_LOCKING
 from powergraph.format import aligned_table, format_number
-
-if TYPE_CHECKING:   # pragma: no cover
-    from powergraph.analyses.cycle import CycleResult
 
 #: CSV columns of the per-row results, with their units.
 COLUMNS = (("row", None), ("duration", "s"), ("mode", None), ("power_in", "W"),
