@@ -10,9 +10,12 @@ Newton iteration on the bus balances, over every row at once, each step one call
 sweep — the THS-II's 10^5 rows in 2-3 s against 18-40 min for a loop of single solves,
 660-860 times faster in one run of ``python benchmarks/cycle.py --points 100000 --sample
 500`` (docs/performance.md), every row the same as its single solve to about 1e-12.
-The others — a ``mode`` column, friction laws and bearing losses — take one single solve
-per row, into preallocated columns (``single solves``). A row the batched evaluators do
-not solve is solved alone, for its reason.
+Rows with a ``mode`` column are each their mode's case
+(:mod:`powergraph.analyses.cycle_modes`, ``modes (sweep per gear)``): a gear that does not
+depend on the load through its compiled sweep, a mode whose freewheels are decided at each
+load row by row. Friction laws and bearing losses take one single solve per row, into
+preallocated columns (``single solves``). A row the batched evaluators do not solve is
+solved alone, for its reason.
 
 The result holds columns (one numpy array per quantity over the rows: tens of bytes per
 row, issue 34), not a record per row; ``result.rows[i]`` builds row ``i`` as a
@@ -317,8 +320,11 @@ def cycle(model: Model, points: IO[str] | str | os.PathLike | Points,
     from powergraph.analyses.cycle_hybrid import METHOD, batchable, hybrid_rows
 
     result = None
+    from powergraph.analyses.cycle_modes import METHOD as IN_MODES, mode_rows
+
     batched = (("sweep", sweep_rows) if sweepable(model, points) else
-               (METHOD, hybrid_rows) if batchable(model, points) else None)
+               (METHOD, hybrid_rows) if batchable(model, points) else
+               (IN_MODES, mode_rows) if points.mode_codes is not None else None)
     if batched is not None:
         method, rows = batched
         try:

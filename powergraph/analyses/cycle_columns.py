@@ -110,18 +110,19 @@ class Columns:
             self.losses[label] = np.full(self.n, np.nan)
         return self.losses[label]
 
-    def fill(self, part: slice, solved: np.ndarray, power_in: np.ndarray,
+    def fill(self, part: slice | np.ndarray, solved: np.ndarray, power_in: np.ndarray,
              power_out: np.ndarray, loss: np.ndarray, efficiencies: np.ndarray,
              verdicts: np.ndarray, losses: Mapping[str, np.ndarray]) -> None:
-        """The rows ``solved`` (a mask over the rows ``part``), solved at once: their
-        values from the arrays over ``part``."""
+        """The rows ``solved`` (a mask over the rows ``part``: a slice or row indices),
+        solved at once: their values from the arrays over ``part``."""
         for target, values in ((self.power_in, power_in), (self.power_out, power_out),
                                (self.loss, loss), (self.efficiencies, efficiencies),
                                (self.verdict_codes, verdicts)):
-            np.copyto(target[part], values, where=solved, casting="same_kind")
+            target[part] = np.where(solved, values, target[part])
         if solved.any():
             for label, values in losses.items():
-                np.copyto(self._loss_column(label)[part], values, where=solved)
+                column = self._loss_column(label)
+                column[part] = np.where(solved, values, column[part])
 
     def put(self, rows: np.ndarray, power_in: np.ndarray, power_out: np.ndarray,
             loss: np.ndarray, efficiencies: np.ndarray, verdicts: np.ndarray,

@@ -94,9 +94,9 @@ def _fill(columns: Columns, part: slice, result, model: Model) -> np.ndarray:
     columns.fill(part, solved, entering, leaving, _finite(total),
                  np.where(np.isfinite(efficiency), efficiency, np.nan), verdicts,
                  {element_label(model, k): _finite(v) for k, v in result.losses.items()})
-    columns.warn("role-reversed", part.start + np.flatnonzero(
-        _reversed_roles(p_in, p_out) & solved & (verdicts == OK)))
-    return part.start + np.flatnonzero(~solved)
+    rows = np.arange(len(columns.power_in))[part]
+    columns.warn("role-reversed", rows[_reversed_roles(p_in, p_out) & solved & (verdicts == OK)])
+    return rows[~solved]
 
 
 def _reversed_roles(p_in: np.ndarray, p_out: np.ndarray) -> np.ndarray:

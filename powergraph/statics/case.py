@@ -100,6 +100,8 @@ class TrainCase:
             for a model without modes, or ``backdrive`` for a train without exactly one
             input and one output port.
         """
+        if mode is None and model.resolved and model.modes:
+            mode = model.mode         # a model already resolved in one of its modes
         if mode is not None and not model.modes:
             raise UsageError(f"--mode {mode}: the model has no modes table")
         if model.modes and mode is None:

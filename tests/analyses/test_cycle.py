@@ -1,6 +1,7 @@
 """Duty cycles: the totals are the single solves' powers times the rows' durations,
 through the compiled sweep (a plain train), the sweep with the bus balance (machines on
-buses: tests/analyses/test_cycle_hybrid_batch.py) and single solves (modes);
+buses: tests/analyses/test_cycle_hybrid_batch.py) and each mode's case (modes:
+tests/analyses/test_cycle_modes.py);
 issue 34: a row that cannot be solved is an error naming it, or with ``keep_going`` is
 left out of the totals, which count it."""
 from __future__ import annotations
@@ -108,7 +109,7 @@ def test_time_per_mode_of_a_gearbox_cycle():
           "2000,10,1,1\n"
     model = pg.load_model(MODELS / "simpson_3speed.yaml")
     result = cycle(model, io.StringIO(csv))
-    assert result.method == "single solves"
+    assert result.method == "modes (sweep per gear)"
     assert result.time_per_mode == {"1": 5.0, "2": 6.0}
     assert result.locked_rows == []
     # Each row as `powergraph solve --mode` solves it: first gear through the freewheel F1
