@@ -417,3 +417,33 @@ def test_conditions_are_plain_json_even_when_the_sign_comes_from_sympy() -> None
     data = json.loads(json.dumps(derive_formulas(model_from_dict(data)).to_dict()))
     assert all(type(c["always"]) is bool for c in data["conditions"])
     assert any(c["always"] for c in data["conditions"])
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in (ROOT / "models").glob(
+    "planetary_2kh_*.yaml") if "two_stages" not in p.name))
+def test_a_back_driven_load_gives_solves_efficiency_not_its_reciprocal(name: str) -> None:
+    """Issue 35: with the input giving power out (power -1 kW) the formula said 100.75 %
+    where solve says 99.255 %. Both now say power leaving over power entering, <= 1;
+    and the closed form is the reciprocal of the formal one (declared output / input)."""
+    model = load_model(ROOT / "models" / name)
+    given = model.inputs[0]
+    back = model.with_port(given.index, power=-1000.0, torque=None)
+    solved = pg.solve(back)
+    f = derive_formulas(back)
+    assert f.evaluate()["efficiency"] == pytest.approx(solved.efficiency, rel=1e-12)
+    assert f.numeric["efficiency"] == pytest.approx(solved.efficiency, rel=1e-12)
+    assert solved.efficiency < 1.0
+    assert f.evaluate()["efficiency"] == pytest.approx(1 / solved.formal_efficiency, rel=1e-12)
+
+
+def test_a_train_with_modes_needs_a_mode() -> None:
+    """Issue 35: formula silently gave the first mode's closed form; now it refuses, as
+    solve does, and ``--mode`` gives each gear's (the Simpson set: 1 + 1/k = 4/3 in 2nd,
+    -k = -3 in reverse, k = z_r/z_s = 3)."""
+    from powergraph.errors import UsageError
+
+    model = load_model(ROOT / "models" / "simpson_3speed.yaml")
+    with pytest.raises(UsageError, match="the model has modes 1, 2, 3, R"):
+        derive_formulas(model)
+    assert float(derive_formulas(model, mode="2").evaluate()["ratio"]) == pytest.approx(4 / 3)
+    assert float(derive_formulas(model, mode="R").evaluate()["ratio"]) == pytest.approx(-3)
