@@ -14,7 +14,8 @@ while each row only relates neighbours. :func:`solve_square` therefore solves, t
 re-solves with every column scaled by the magnitude of its unknown and every row by its
 largest scaled entry (equilibration) until those magnitudes settle, so each unknown comes
 out accurate relative to itself; a small dense system whose unknowns lie within
-``WELL_SCALED`` of each other is already accurate after the first solve and stops there.
+``WELL_SCALED`` of each other is already accurate after the first (row-equilibrated) solve
+and stops there.
 Whether the system is regular is decided on that scaled system (its condition number,
 estimated in linear time on the sparse path): diagonal scaling cannot hide a real
 singularity, since entrywise relative round-off is the same in every scaling.
@@ -24,7 +25,12 @@ an upper bound of the rank) and confirms it numerically on the matched square pa
 scaled; only when that part is numerically singular (redundant loops with consistent
 ratios) does it fall back to the singular values of the equilibrated dense matrix.
 
-The dense path (small systems) is :mod:`powergraph.linalg_dense`, re-exported here.
+The scaled solve is written once (:func:`solve_square`, :func:`column_scales`); the two
+paths differ only in how they store the matrix and factor it (``_Dense``, ``_Sparse``): a
+dense array, solved by ``numpy.linalg.solve``, its condition number bounded from the
+1-norm one (:func:`dense_condition`), or triplets, factored by
+``scipy.sparse.linalg.splu``, the condition number estimated (Hager). Only numpy's public
+API is used.
 """
 from __future__ import annotations
 
@@ -32,19 +38,16 @@ from typing import Callable, NamedTuple
 
 import numpy as np
 
-from powergraph.linalg_dense import (  # noqa: F401 - re-exported: the dense path's names
-    COND_LIMIT,
-    MAX_PASSES,
-    PLAIN_UP_TO,
-    ROUND_OFF,
-    SETTLED,
-    WELL_SCALED,
-    Solved,
-    _dense_square,
-    dense_condition,
-    solve_dense_square,
-    solve_plain,
-)
+#: A scaled system whose condition number reaches this is singular.
+COND_LIMIT = 1e12
+#: Scaled re-solves of a square system, at most.
+MAX_PASSES = 12
+#: The scales have settled when no unknown's magnitude changes by this factor.
+SETTLED = 8.0
+#: An unknown smaller than this fraction of its row's other terms is scaled like them.
+ROUND_OFF = 1e-8
+#: A dense system whose unknowns span at most this factor is solved once (rows equilibrated).
+WELL_SCALED = 1e3
 
 #: Systems with at least this many unknowns are solved with scipy.sparse.
 SPARSE_FROM = 100
@@ -129,6 +132,19 @@ class Triplets(NamedTuple):
                         self.values * col_scale[self.cols] / row_scale[self.rows], self.shape)
 
 
+class Solved(NamedTuple):
+    """A square system's solution and the condition number of its scaled system (on the
+    dense path a bound of it on the same side of :data:`COND_LIMIT`, :func:`dense_condition`;
+    on the sparse path an estimate); NaN and an infinite condition when the solve failed."""
+
+    x: np.ndarray
+    condition: float
+
+    @property
+    def regular(self) -> bool:
+        return self.condition < COND_LIMIT     # (a failed solve: NaN, infinite condition)
+
+
 def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
                  passes: int = 1) -> Solved:
     """Solve a square system, re-solved at least ``passes`` times scaled by its own
@@ -138,6 +154,12 @@ def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
     ``guess`` (optional) is the expected magnitude of each unknown (0 where unknown): the
     first solve is then already scaled by it, which a system whose unknowns span hundreds
     of decades needs (unscaled elimination would absorb the small terms in the large ones).
+
+    The first solve has its rows equilibrated too. A dense system whose unknowns come out
+    within ``WELL_SCALED`` of each other (and that asks for one pass) stops there: partial
+    pivoting on it is already as accurate as further scaled passes would be (pivoting does
+    not depend on the columns' scales, and the rows' scales move by at most that factor);
+    only the condition number of its scaled system is still taken.
 
     Examples
     --------
@@ -152,79 +174,160 @@ def solve_square(t: Triplets, rhs: np.ndarray, guess: np.ndarray | None = None,
     n = t.shape[0]
     if n == 0:
         return Solved(np.zeros(0), 1.0)
-    sparse = use_sparse(n)
-    if not sparse:
-        return _dense_square(t.dense(), rhs, guess, passes)
-    if guess is None:
-        x, _ = _factor_solve(t, rhs, sparse)
-    else:
-        x, _ = _scaled_solve(t, rhs, column_scales(t, np.abs(guess), rhs), sparse)
-    failed = Solved(np.full(n, np.nan), np.inf)
-    if x is None or not np.all(np.isfinite(x)):
-        return failed
-    d = column_scales(t, x, rhs)
+    system = _Sparse(t) if use_sparse(n) else _Dense(t)
+    rhs = np.asarray(rhs, dtype=float)
+    size = np.abs(rhs)
+    d = np.ones(n) if guess is None else column_scales(system, np.abs(guess), size)
+    x, condition = _scaled_solve(system, rhs, d)
+    if x is None:
+        return Solved(np.full(n, np.nan), np.inf)
+    d = column_scales(system, x, size)
+    if passes <= 1 and isinstance(system, _Dense) and d.max() <= WELL_SCALED * d.min():
+        return Solved(x, dense_condition(system.equilibrated(d)[0]))
     for k in range(MAX_PASSES):
-        x, condition = _scaled_solve(t, rhs, d, sparse)
-        if x is None or not np.all(np.isfinite(x)):
-            return failed
-        following = column_scales(t, x, rhs)
-        if k + 1 >= passes and np.all(np.abs(np.log(following / d)) < np.log(SETTLED)):
+        x, condition = _scaled_solve(system, rhs, d)
+        if x is None:
+            return Solved(np.full(n, np.nan), np.inf)
+        following = column_scales(system, x, size)
+        if k + 1 >= passes and (np.abs(np.log(following / d)) < np.log(SETTLED)).all():
             break
         d = following
     return Solved(x, condition())
 
 
-def _scaled_solve(t: Triplets, rhs: np.ndarray, d: np.ndarray,
-                  sparse: bool) -> tuple[np.ndarray | None, Callable[[], float]]:
-    """Solve with the columns scaled by ``d`` and each row by its largest entry."""
-    r = t.row_terms(d)
-    r[r == 0] = 1.0
-    y, cond = _factor_solve(t.scaled(r, d), rhs / r, sparse)
-    return (None if y is None else d * y), cond
+class _Dense:
+    """A small system as a dense matrix: :func:`solve_square`'s operations on it."""
 
+    def __init__(self, t: Triplets) -> None:
+        self.a = t.dense()
+        self.magnitude = np.abs(self.a)
+        self.largest = self.magnitude.max(axis=0)       # per column
 
-def column_scales(t: Triplets, x: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """The magnitude of each unknown, or, where it is round-off (below ``ROUND_OFF`` of the
-    other terms in each of its rows) or zero, the magnitude its rows give it."""
-    d = np.abs(x)
-    terms = np.maximum(t.row_terms(x), np.abs(rhs[:t.shape[0]]) if rhs.size else 0.0)
-    # per column: smallest over its rows of (row terms / |coefficient|)
-    implied = np.full(t.shape[1], np.inf)
-    ratio = np.where(terms[t.rows] > 0, terms[t.rows] / np.abs(t.values), np.inf)
-    np.minimum.at(implied, t.cols, ratio)
-    small = d < ROUND_OFF * implied
-    d = np.where(small & np.isfinite(implied), implied, d)
-    if np.all(d == 0):
-        d[:] = 1.0
-    else:
-        d[d == 0] = np.min(d[d > 0])
-    return d
+    def row_terms(self, d: np.ndarray) -> np.ndarray:
+        """Per row, the largest ``|A_ij| d_j`` (``d >= 0``)."""
+        return (self.magnitude * d).max(axis=1)
 
+    def implied(self, terms: np.ndarray) -> np.ndarray:
+        """Per column, the smallest over its rows of ``terms_i / |A_ij|`` (rows with a
+        coefficient there and terms > 0; inf where none)."""
+        reciprocal = np.divide(1.0, self.magnitude, out=np.full(self.a.shape, np.inf),
+                               where=self.magnitude > 0)
+        return (np.where(terms > 0, terms, np.inf)[:, None] * reciprocal).min(axis=0)
 
-def _factor_solve(t: Triplets, rhs: np.ndarray,
-                  sparse: bool) -> tuple[np.ndarray | None, Callable[[], float]]:
-    """Solve ``t x = rhs``; also a function giving the 2-norm (dense) or estimated 1-norm
-    (sparse) condition number. None when the factorisation finds the matrix exactly
-    singular."""
-    if not sparse:
-        matrix = t.dense()
+    def equilibrated(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``diag(1/r) A diag(d)`` with ``r`` each row's largest ``|A_ij| d_j`` (1 for an
+        empty row), and ``r``."""
+        m = self.a * d
+        r = np.abs(m).max(axis=1)
+        if not r.all():
+            r[r == 0] = 1.0
+        m /= r[:, None]
+        return m, r
+
+    def factor_solve(self, m: np.ndarray,
+                     rhs: np.ndarray) -> tuple[np.ndarray | None, Callable[[], float]]:
         try:
-            x = np.linalg.solve(matrix, rhs)
+            x = np.linalg.solve(m, rhs)
         except np.linalg.LinAlgError:
             return None, _infinite
-        return x, lambda: float(np.linalg.cond(matrix))
-    from scipy.sparse.linalg import splu
+        return x, lambda: dense_condition(m)
 
-    try:
-        lu = splu(t.csc())
-    except RuntimeError:  # exactly singular
+
+class _Sparse:
+    """A large system as triplets: :func:`solve_square`'s operations on it."""
+
+    def __init__(self, t: Triplets) -> None:
+        self.t = t
+        self.magnitude = np.abs(t.values)
+        self.largest = np.zeros(t.shape[1])              # per column
+        np.maximum.at(self.largest, t.cols, self.magnitude)
+
+    def row_terms(self, d: np.ndarray) -> np.ndarray:
+        return self.t.row_terms(d)
+
+    def implied(self, terms: np.ndarray) -> np.ndarray:
+        t = self.t
+        out = np.full(t.shape[1], np.inf)
+        np.minimum.at(out, t.cols, np.where(terms > 0, terms, np.inf)[t.rows] / self.magnitude)
+        return out
+
+    def equilibrated(self, d: np.ndarray) -> tuple[Triplets, np.ndarray]:
+        r = self.t.row_terms(d)
+        if not r.all():
+            r[r == 0] = 1.0
+        return self.t.scaled(r, d), r
+
+    def factor_solve(self, m: Triplets,
+                     rhs: np.ndarray) -> tuple[np.ndarray | None, Callable[[], float]]:
+        from scipy.sparse.linalg import splu
+
+        try:
+            lu = splu(m.csc())
+        except RuntimeError:  # exactly singular
+            return None, _infinite
+
+        def condition() -> float:
+            norm = float(np.bincount(m.cols, weights=np.abs(m.values),
+                                     minlength=m.shape[1]).max())
+            return norm * _inverse_norm1(lu.solve, lambda b: lu.solve(b, trans="T"),
+                                         m.shape[0])
+
+        return lu.solve(rhs), condition
+
+
+def _scaled_solve(system: _Dense | _Sparse, rhs: np.ndarray,
+                  d: np.ndarray) -> tuple[np.ndarray | None, Callable[[], float]]:
+    """Solve with the columns scaled by ``d`` and each row by its largest entry; None when
+    the factorisation finds it exactly singular or the solution is not finite."""
+    m, r = system.equilibrated(d)
+    y, condition = system.factor_solve(m, rhs / r)
+    if y is None or not np.isfinite(y).all():
         return None, _infinite
+    return d * y, condition
 
-    def condition() -> float:
-        norm = float(np.bincount(t.cols, weights=np.abs(t.values), minlength=t.shape[1]).max())
-        return norm * _inverse_norm1(lu.solve, lambda b: lu.solve(b, trans="T"), t.shape[0])
 
-    return lu.solve(rhs), condition
+def column_scales(system: _Dense | _Sparse, x: np.ndarray, size: np.ndarray) -> np.ndarray:
+    """The magnitude of each unknown, or, where it is round-off (below ``ROUND_OFF`` of the
+    other terms in each of its rows, the right-hand side's ``size`` included) or zero, the
+    magnitude its rows give it."""
+    d = np.abs(x)
+    terms = np.maximum(system.row_terms(d), size)
+    # Every implied magnitude is at most (largest row terms) / (the column's largest
+    # coefficient): unknowns above ROUND_OFF of that bound are neither round-off nor zero.
+    low = (d * system.largest).min()
+    if low > 0 and low >= ROUND_OFF * terms.max():
+        return d
+    implied = system.implied(terms)
+    small = d < ROUND_OFF * implied
+    if small.any():
+        d = np.where(small & np.isfinite(implied), implied, d)
+    if d.min() > 0:
+        return d
+    positive = d > 0
+    if not positive.any():
+        return np.ones_like(d)
+    return np.where(positive, d, d[positive].min())
+
+
+def dense_condition(matrix: np.ndarray) -> float:
+    """The 2-norm condition number of a square matrix as far as :data:`COND_LIMIT` needs
+    it: from the 1-norm one (one inverse) when that decides (``κ1/n <= κ2 <= n·κ1``),
+    else exact (the singular values).
+
+    >>> dense_condition(np.eye(3)) < COND_LIMIT, dense_condition(np.ones((3, 3))) < COND_LIMIT
+    (True, False)
+    """
+    n = len(matrix)
+    try:
+        inverse = np.linalg.inv(matrix)
+    except np.linalg.LinAlgError:
+        return np.inf
+    k1 = float(np.abs(matrix).sum(axis=0).max() * np.abs(inverse).sum(axis=0).max())
+    if n * k1 < COND_LIMIT:
+        return n * k1
+    if k1 > n * COND_LIMIT:
+        return k1 / n
+    return float(np.linalg.cond(matrix))
 
 
 def _infinite() -> float:

@@ -1,6 +1,9 @@
 """The linear systems: triplets, structural rank, scaled solves, dense and sparse alike.
 
-Expected values are closed forms: geometric sequences, a matrix with a dependent row.
+Expected values are closed forms (geometric sequences, a matrix with a dependent row, a
+well-conditioned system rescaled over many decades, whose unscaled solution numpy's
+``solve`` gives) and numpy's SVD for condition numbers (computed independently of the
+bound the dense path uses).
 """
 from __future__ import annotations
 
@@ -8,7 +11,10 @@ import numpy as np
 import pytest
 
 from powergraph import linalg
-from powergraph.linalg import Triplets, matching, rank, solve_square
+from hypothesis import given, settings, strategies as st
+
+from powergraph.linalg import (COND_LIMIT, Triplets, dense_condition, matching, rank,
+                               solve_square)
 
 
 @pytest.fixture(params=["dense", "sparse"])
@@ -49,6 +55,68 @@ def test_a_singular_system_is_not_regular_whatever_its_scaling(path) -> None:
     assert not solve_square(t, np.array([1.0, 1.0, 2.0])).regular
 
 
+def test_an_exactly_singular_small_system_is_not_regular(path) -> None:
+    ones = Triplets.build(*np.nonzero(np.ones((3, 3))), np.ones(9), (3, 3))
+    assert not solve_square(ones, np.ones(3)).regular
+    zero_column = Triplets.build([0, 1], [1, 1], [1.0, 1.0], (2, 2))
+    assert not solve_square(zero_column, np.ones(2)).regular
+
+
+def test_the_dense_and_sparse_paths_give_the_ladders_numbers(monkeypatch) -> None:
+    """x_k = 5^k, k < 25, through both factorisations: the same scaled steps."""
+    n = 25
+    solved = {}
+    for which in ("dense", "sparse"):
+        monkeypatch.setattr(linalg, "PATH", which)
+        solved[which] = solve_square(ladder(n, 5.0), np.eye(n)[0])
+        assert solved[which].regular
+    assert np.allclose(solved["dense"].x / 5.0 ** np.arange(n), 1.0, rtol=1e-13, atol=0)
+    assert np.allclose(solved["dense"].x, solved["sparse"].x, rtol=1e-13, atol=0)
+
+
+@pytest.mark.parametrize("eps", [1e-3, 1e-9, 1e-11, 1e-12, 1e-13, 1e-15, 1e-20, 0.0])
+@pytest.mark.parametrize("n", [2, 8, 20])
+def test_the_cheap_condition_is_on_the_same_side_of_the_limit_as_the_exact_one(
+        eps: float, n: int) -> None:
+    """diag(1, ..., 1, eps) rotated: its 2-norm condition number is 1/eps by its singular
+    values, which numpy's SVD (np.linalg.cond) computes independently of the bound."""
+    q, _ = np.linalg.qr(np.random.default_rng(n).normal(size=(n, n)))
+    matrix = q @ np.diag([1.0] * (n - 1) + [eps]) @ q.T
+    exact = np.linalg.cond(matrix)
+    assert (dense_condition(matrix) < COND_LIMIT) == (exact < COND_LIMIT)
+
+
+@settings(max_examples=200, deadline=None)
+@given(n=st.integers(1, 8), seed=st.integers(0, 2**32 - 1), spread=st.integers(0, 24),
+       zeros=st.floats(0.0, 0.5))
+def test_each_unknown_is_accurate_relative_to_itself_over_many_decades(
+        n: int, seed: int, spread: int, zeros: float) -> None:
+    """A well-conditioned system ``a x = b`` (the identity plus off-diagonal entries of
+    1e-12..0.3, some exactly zero; numpy's solve gets it to rounding) with its rows and
+    columns rescaled by up to ``10^±spread``: ``diag(r) a diag(1/c)`` has the solution
+    ``c x``, whose unknowns span up to 2·spread decades. The scaled solve finds it regular
+    and every unknown to a relative 1e-10. (Unscaled elimination does not: the row scales
+    make it pivot on the tiny entries; it misses that accuracy on more than half of such
+    systems with spread 24.)"""
+    rng = np.random.default_rng(seed)
+    off = rng.normal(size=(n, n)) * 10.0 ** rng.uniform(-12, 0, (n, n))
+    off[rng.random((n, n)) < zeros] = 0.0
+    np.fill_diagonal(off, 0.0)
+    a = np.eye(n) + 0.3 * off
+    if np.linalg.cond(a) > 1e3:
+        return
+    x = np.linalg.solve(a, a @ (rng.choice([-1.0, 1.0], n) * rng.uniform(0.5, 2.0, n)))
+    b = a @ x
+    x = np.linalg.solve(a, b)          # the solution of the rounded right-hand side
+    r = 10.0 ** rng.integers(-spread, spread + 1, n)
+    c = 10.0 ** rng.integers(-spread, spread + 1, n)
+    scaled = a * r[:, None] / c[None, :]
+    rows, cols = np.nonzero(scaled)
+    solved = solve_square(Triplets.build(rows, cols, scaled[rows, cols], (n, n)), b * r)
+    assert solved.regular
+    assert np.allclose(solved.x / (c * x), 1.0, rtol=1e-10, atol=0)
+
+
 def test_matching_and_rank_see_a_dependent_row(path) -> None:
     """Three rows over three columns, structurally full, numerically of rank 2 (the
     third row is the sum of the first two): the structural rank is confirmed or not on
@@ -70,8 +138,6 @@ def test_matching_finds_an_augmenting_path() -> None:
 
 
 # --- set operations without numpy.ma: numpy's own functions are the expected values ----
-
-from hypothesis import given, strategies as st  # noqa: E402
 
 from powergraph.linalg import others, unique_inverse  # noqa: E402
 

@@ -19,15 +19,12 @@ from powergraph.errors import KinematicsError
 from powergraph.kinematics.elements import Element, elements_of
 from powergraph.kinematics.system import CONFLICT_RTOL, conflict, element_words, system_of
 from powergraph.linalg import (
-    COND_LIMIT,
-    PLAIN_UP_TO,
+    SVD_RTOL,
     Triplets,
     equilibrated,
     matching,
     rank,
-    solve_plain,
     solve_square,
-    SVD_RTOL,
     svd_rank,
 )
 from powergraph.model.spec import Model
@@ -136,6 +133,10 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     (-4.0, -2.5)
     """
     elements = elements_of(model) if elements is None else elements
+    # the speeds at the ports' own speeds depend on the model alone: solved once per model
+    own = speeds is None and not slips and elements is model.derived.get("kinematics.elements")
+    if own and "kinematics.own_speeds" in model.derived:
+        return model.derived["kinematics.own_speeds"]
     rows, dof = _structure(model, elements)
     if dof == 0:
         raise KinematicsError("the train cannot move (0 degrees of freedom): its meshes and "
@@ -150,11 +151,14 @@ def solve_speeds(model: Model, speeds: Mapping[str, float] | None = None,
     solution = _solve_reduced(model, rows, rhs, given, elements)
     inputs, outputs = model.inputs, model.outputs
     ids = [b.id for b in model.bodies]
-    return Kinematics(
+    kin = Kinematics(
         body_speeds=MappingProxyType(dict(zip(ids, solution.tolist()))),
         body_of=model.body_of, dof=dof, given=MappingProxyType(dict(given)),
         input_component=inputs[0].component if len(inputs) == 1 else None,
         output_component=outputs[0].component if len(outputs) == 1 else None)
+    if own:
+        model.derived["kinematics.own_speeds"] = kin
+    return kin
 
 
 def _structure(model: Model, elements: tuple[Element, ...]) -> tuple[Triplets, int]:
@@ -191,10 +195,6 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
     is_known[list(known)] = True
     unknown = np.flatnonzero(~is_known)
     reduced, square = _reduced(model, rows, unknown)
-    if 0 < unknown.size <= PLAIN_UP_TO and square[0].size == unknown.size:
-        plain = _solve_plain(rows, square, unknown, rhs.tolist(), solution.tolist())
-        if plain is not None:
-            return np.array(plain)
     reduced_rhs = rhs - rows.dot(solution)
     determined = True
     if unknown.size:
@@ -207,40 +207,6 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
                                                     given, reduced, square))
     if not determined:
         raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
-    return solution
-
-
-def _solve_plain(rows: Triplets, square: tuple, unknown: np.ndarray, rhs: list[float],
-                 solution: list[float]) -> list[float] | None:
-    """:func:`_solve_reduced`'s square case on plain Python floats (a few unknowns: no
-    numpy call costs more than the arithmetic); None when the matched rows are singular
-    or any row is not met (the general path then says why)."""
-    matched, columns, _ = square
-    entries = list(zip(rows.rows.tolist(), rows.cols.tolist(), rows.values.tolist()))
-    free = {body: j for j, body in enumerate(unknown[columns].tolist())}
-    row_of = {row: i for i, row in enumerate(matched.tolist())}
-    n = len(free)
-    matrix = [[0.0] * n for _ in range(n)]
-    reduced = [rhs[row] for row in matched.tolist()]
-    for row, col, value in entries:
-        i = row_of.get(row)
-        if i is None:
-            continue
-        if col in free:
-            matrix[i][free[col]] += value
-        else:
-            reduced[i] -= value * solution[col]
-    x, cond = solve_plain(matrix, reduced)
-    if x is None or not cond < COND_LIMIT:
-        return None
-    for body, j in free.items():
-        solution[body] = x[j]
-    residual = [-v for v in rhs]
-    for row, col, value in entries:
-        residual[row] += value * solution[col]
-    scale = max(1.0, max(map(abs, solution)))
-    if residual and max(map(abs, residual)) > 1e-9 * scale:
-        return None
     return solution
 
 

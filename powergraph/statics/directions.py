@@ -13,7 +13,6 @@ own bodies.
 """
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 from typing import Callable
 
@@ -21,7 +20,6 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil
 from powergraph.kinematics.elements import ELEMENT_BODIES, body_columns
-from powergraph.linalg import PLAIN_UP_TO
 
 #: A driver code per element: +1 gear a drives, -1 gear b drives, 0 no power passes.
 Pattern = tuple[int, ...]
@@ -52,60 +50,45 @@ def relative_speeds(elements: tuple[Element, ...], kin: Kinematics) -> np.ndarra
     return relative_speed(w[:, 0], w[:, 1], w[:, 2])
 
 
+def where(condition, x, y):
+    """``np.where(condition, x, y)``: the one selection the per-value rules make. The
+    sweep's kernels compile those rules on floats with this name bound to ``x if
+    condition else y`` (numba's own ``np.where`` makes an array of a float).
+
+    >>> where(np.array([True, False]), 0, np.array([1, 2])).tolist()
+    [0, 2]
+    """
+    return np.where(condition, x, y)
+
+
 def relative_speed(w_a, w_b, w_c):
-    """``w_a - w_c`` (arrays of any one shape, or floats), exactly 0 where it is round-off
-    on the scale of the three speeds (:data:`SPEED_NOISE`): the one rule for a relative
-    speed that is zero, for one operating point or many.
+    """``w_a - w_c`` (arrays of any one shape, 0-d for one value), exactly 0 where it is
+    round-off on the scale of the three speeds (:data:`SPEED_NOISE`): the one rule for a
+    relative speed that is zero, for one operating point or many.
 
     >>> relative_speed(np.array([1.0, 1.0]), np.array([2.0, 2.0]), np.array([0.5, 1.0 - 1e-16]))
     array([0.5, 0. ])
     """
-    w_a, w_b, w_c = np.asarray(w_a, float), np.asarray(w_b, float), np.asarray(w_c, float)
     rel = w_a - w_c
     top = np.maximum(np.maximum(np.abs(w_a), np.abs(w_b)), np.abs(w_c))
-    return np.where(np.abs(rel) <= SPEED_NOISE * top, 0.0, rel)
-
-
-def relative_speed_point(w_a: float, w_b: float, w_c: float) -> float:
-    """:func:`relative_speed` of one element at one point, on floats: plain Python that a
-    compiler of scalar loops (the sweep's numba kernels) takes as it is; the same
-    operations in the same order, so the same number.
-
-    >>> relative_speed_point(1.0, 2.0, 0.5), relative_speed_point(1.0, 2.0, 1.0 - 1e-16)
-    (0.5, 0.0)
-    """
-    rel = w_a - w_c
-    top = nan_max(nan_max(abs(w_a), abs(w_b)), abs(w_c))
-    return 0.0 if abs(rel) <= SPEED_NOISE * top else rel
-
-
-def nan_max(a: float, b: float) -> float:
-    """``np.maximum`` on two floats (NaN when either is NaN), in plain Python.
-
-    >>> nan_max(1.0, 2.0), nan_max(float("nan"), 2.0), nan_max(2.0, float("nan"))
-    (2.0, nan, nan)
-    """
-    return a if (a >= b or a != a) else b
+    return where(np.abs(rel) <= SPEED_NOISE * top, 0.0, rel)
 
 
 def force_scales(elements: tuple[Element, ...], forces: np.ndarray, factors: np.ndarray,
                  external: dict[str, float], frame_body: str) -> np.ndarray:
-    """Per element, the largest sum of torque magnitudes on one of its own moving bodies.
+    """Per element, the largest sum of torque magnitudes on one of its own moving bodies
+    (:func:`own_scales` of one operating point).
 
     The frame is left out (it collects every reaction of the train), unless the element
     touches nothing else. A force far below this scale is round-off: nothing passes.
     """
     bodies, outside, n_bodies, frame = _columns(tuple(map(ELEMENT_BODIES, elements)),
                                                 tuple(external), frame_body)
-    if len(elements) <= PLAIN_UP_TO:
-        return np.array(own_scales_plain(bodies.tolist(), [e.ratio for e in elements],
-                                         np.asarray(forces, dtype=float).tolist(),
-                                         np.asarray(factors, dtype=float).tolist(),
-                                         _external_load(n_bodies, outside, external), frame))
     load = np.zeros(n_bodies)
-    np.add.at(load, outside, np.abs(np.array(list(external.values()), dtype=float)))
+    load[outside] = np.abs(np.fromiter(external.values(), dtype=float, count=len(external)))
     ratios = np.array([e.ratio for e in elements], dtype=float)
-    return own_scales(bodies, ratios, forces, np.asarray(factors, dtype=float), load, frame)
+    return own_scales(bodies, ratios, np.asarray(forces, dtype=float),
+                      np.asarray(factors, dtype=float), load, frame)
 
 
 @lru_cache(maxsize=64)
@@ -127,38 +110,6 @@ def _columns(triples: tuple[tuple[str, str, str], ...], external: tuple[str, ...
     return bodies, outside, len(index), frame
 
 
-def _external_load(n_bodies: int, outside: np.ndarray, external: dict) -> list[float]:
-    load = [0.0] * n_bodies
-    for body, torque in zip(outside.tolist(), external.values()):
-        load[body] += abs(torque)
-    return load
-
-
-def own_scales_plain(bodies: list, ratios: list, forces: list, factors: list,
-                     load: list, frame: int) -> list[float]:
-    """:func:`own_scales` of one operating point on plain Python floats (a few elements:
-    no numpy call costs more than the arithmetic). ``load`` is changed: each element's
-    torque magnitudes are added to its bodies'.
-
-    >>> own_scales_plain([[1, 2, 0]], [-2.0], [3.0], [1.0], [0.0, 0.0, 0.0], 0)
-    [6.0]
-    """
-    for (a, b, c), ratio, force, factor in zip(bodies, ratios, forces, factors):
-        on_a, on_b, on_c = element_stencil(ratio, factor)
-        load[a] += abs(on_a * force)
-        load[b] += abs(on_b * force)
-        load[c] += abs(on_c * force)
-    top = max(load, default=0.0)
-    scales = []
-    for triple in bodies:
-        own = -math.inf
-        for body in triple:
-            if body != frame and load[body] > own:
-                own = load[body]
-        scales.append(own if own > -math.inf else top)
-    return scales
-
-
 def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
                factors: np.ndarray, load: np.ndarray, frame: int) -> np.ndarray:
     """:func:`force_scales` on arrays, for one operating point or many at once.
@@ -175,6 +126,9 @@ def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     frame : int
         The frame's body column (-1 if none).
 
+    Each body's load is its external torque plus the element torques on it, added in
+    element order for gear a, then gear b, then the carrier (one ``bincount``).
+
     Examples
     --------
     A pair on the frame (bodies 1, 2; frame 0) with ratio -2 and force 3: the torques on
@@ -184,40 +138,51 @@ def own_scales(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     ...            np.array([1.0]), np.zeros(3), 0).tolist()
     [6.0]
     """
-    load = np.array(load, dtype=float)
+    forces = np.asarray(forces, dtype=float)
     ratios = np.asarray(ratios, dtype=float)
     if ratios.ndim < forces.ndim:
         ratios = ratios[:, None]
-    stencil = element_stencil(ratios, factors)
-    if forces.ndim == 1:
-        for column, c in enumerate(stencil):
-            np.add.at(load, bodies[:, column], np.abs(c * forces))
-        own = np.where(bodies == frame, -np.inf, load[bodies]).max(axis=1, initial=-np.inf)
-    else:   # many points: a row operation per (element, body) beats np.add.at
-        for column, c in enumerate(stencil):
-            terms = np.abs(c * forces)
-            for k, body in enumerate(bodies[:, column].tolist()):
-                load[body] += terms[k]
-        own = np.full(forces.shape, -np.inf)
-        for k, triple in enumerate(bodies.tolist()):
-            for body in triple:
-                if body != frame:
-                    np.maximum(own[k], load[body], out=own[k])
-    return np.where(np.isfinite(own), own, load.max(axis=0, initial=0.0))
+    n_el, n_bodies = len(bodies), len(load)
+    points = forces.size // n_el if n_el else 1
+    load = np.asarray(load, dtype=float).reshape(n_bodies, -1)
+    if load.shape[1] != points:
+        load = np.broadcast_to(load, (n_bodies, points))
+    index, on_frame = _own_places(np.asarray(bodies, dtype=np.int64).tobytes(), n_el, n_bodies,
+                                  points, frame)
+    weights = np.concatenate([load.ravel()] + [(c * forces).ravel()
+                                               for c in element_stencil(ratios, factors)])
+    np.abs(weights[load.size:], out=weights[load.size:])
+    total = np.bincount(index, weights, minlength=n_bodies * points).reshape(n_bodies, points)
+    own = np.where(on_frame, -np.inf, total[bodies]).max(axis=1)
+    if not np.isfinite(own).all():
+        own = np.where(np.isfinite(own), own, total.max(axis=0, initial=0.0))
+    return own.reshape(forces.shape)
 
 
-def driver_codes(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> np.ndarray:
-    """Who drives each element, as an array of the shape of ``forces``: the sign of the
-    power gear a feeds in, ``-λ (w_a - w_c)``; 0 where the relative speed is zero or the
-    force is round-off on its own scale.
+@lru_cache(maxsize=64)
+def _own_places(bodies: bytes, n_el: int, n_bodies: int, points: int,
+                frame: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`own_scales`' bins, body by point: the external loads', then each element's
+    on its gear a, gear b and carrier in turn; and where an element's body is the frame."""
+    places = np.frombuffer(bodies, dtype=np.int64).reshape(n_el, 3)
+    index = np.concatenate([np.arange(n_bodies * points),
+                            (places.T[:, :, None] * points + np.arange(points)).ravel()])
+    on_frame = (places == frame)[:, :, None]
+    index.flags.writeable = on_frame.flags.writeable = False
+    return index, on_frame
 
-    >>> driver_codes(np.array([-1.0, 1e-13]), np.array([2.0, 2.0]), np.array([1.0, 1.0]))
-    array([1, 0])
+
+def driver_codes(forces, rel, scales):
+    """Who drives each element, of the shape of ``forces`` (0-d for one value): the sign
+    of the power gear a feeds in, ``-λ (w_a - w_c)``; 0 where the relative speed is zero,
+    the force is round-off on its own scale, or that power is NaN.
+
+    >>> driver_codes(np.array([-1.0, 1e-13, 1.0]), np.array([2.0, 2.0, 2.0]), np.ones(3))
+    array([ 1,  0, -1])
     """
-    forces, rel = np.asarray(forces), np.asarray(rel)
-    code = np.sign(-forces * rel).astype(int)
-    code[(rel == 0.0) | (np.abs(forces) <= FORCE_NOISE * np.asarray(scales))] = 0
-    return code
+    taken = forces * rel        # minus the power gear a feeds in
+    nothing = (rel == 0.0) | (np.abs(forces) <= FORCE_NOISE * scales)
+    return where(nothing, 0, where(taken < 0.0, 1, where(taken > 0.0, -1, 0)))
 
 
 def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Pattern:
@@ -226,26 +191,8 @@ def pattern_of(forces: np.ndarray, rel: np.ndarray, scales: np.ndarray) -> Patte
     >>> pattern_of(np.array([-1.0, 1e-13, 2.0]), np.array([2.0, 2.0, 0.0]), np.ones(3))
     (1, 0, 0)
     """
-    if len(forces) > PLAIN_UP_TO:
-        return tuple(driver_codes(forces, rel, scales).tolist())
-    return tuple(driver_code(force, speed, scale)     # on plain floats (a few elements)
-                 for force, speed, scale in zip(np.asarray(forces, dtype=float).tolist(),
-                                                np.asarray(rel, dtype=float).tolist(),
-                                                np.asarray(scales, dtype=float).tolist()))
-
-
-def driver_code(force: float, rel: float, scale: float) -> int:
-    """:func:`driver_codes` of one element at one point, on floats: plain Python that the
-    single solve runs as it is and the sweep's numba kernels compile. 0 also where
-    ``-λ (w_a - w_c)`` is NaN (which :func:`driver_codes` leaves undefined).
-
-    >>> driver_code(-1.0, 2.0, 1.0), driver_code(1e-13, 2.0, 1.0), driver_code(1.0, 2.0, 1.0)
-    (1, 0, -1)
-    """
-    power = -force * rel
-    if rel == 0.0 or abs(force) <= FORCE_NOISE * scale:
-        return 0
-    return 1 if power > 0.0 else (-1 if power < 0.0 else 0)
+    return tuple(driver_codes(np.asarray(forces, dtype=float), np.asarray(rel, dtype=float),
+                              np.asarray(scales, dtype=float)).tolist())
 
 
 def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
@@ -261,14 +208,13 @@ def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
     """
     forces = np.asarray(forces, dtype=float)
     if forces.ndim == 2:
-        # Every own scale is at most the sum of all torques: a force above the noise of
-        # that sum is not round-off, whatever its own scale; only the points with a force
-        # below it need their own scales.
+        # Every own scale is at most the bound of all torques (SCALE_BOUND): a force above
+        # the noise of that bound is not round-off, whatever its own scale; only the points
+        # with a force below it need their own scales.
         ratio = np.asarray(ratios, dtype=float)
-        total = np.asarray(load, dtype=float).sum(axis=0)
-        for c in element_stencil(ratio if ratio.ndim == 2 else ratio[:, None], factors):
-            total = total + np.abs(c * forces).sum(axis=0)
-        unclear = np.flatnonzero(np.any(np.abs(forces) <= FORCE_NOISE * total, axis=0))
+        bound = SCALE_BOUND * (np.asarray(load, dtype=float).sum(axis=0) + element_load(
+            ratio if ratio.ndim == 2 else ratio[:, None], factors, forces).sum(axis=0))
+        unclear = np.flatnonzero(np.any(np.abs(forces) <= FORCE_NOISE * bound, axis=0))
         codes = driver_codes(forces, rel, np.zeros_like(forces))
         if unclear.size:
             pick = lambda a: np.asarray(a)[..., unclear] if np.ndim(a) == 2 else a  # noqa: E731
@@ -286,17 +232,19 @@ def read_codes(bodies: np.ndarray, ratios: np.ndarray, forces: np.ndarray,
 SCALE_BOUND = 1.0 + 1e-9
 
 
-def element_load(ratio: float, factor: float, force: float) -> float:
+def element_load(ratio, factor, force):
     """The torque magnitudes an element puts on its gear a, gear b and carrier, summed
-    (the terms :func:`own_scales` adds to those bodies' loads), for one point on floats.
+    (the terms :func:`own_scales` adds to those bodies' loads): arrays of any shapes that
+    broadcast, or floats.
 
     An own scale is the load on one body, or the largest on any: at most
     ``SCALE_BOUND * (Σ |external torques| + Σ element_load)``. Read on that bound,
-    :func:`driver_code` only ever says "nothing passes" more often: **where it names a
+    :func:`driver_codes` only ever says "nothing passes" more often: **where it names a
     driver, or the relative speed is zero, its code is the own-scale rule's code** (the
-    force test is the only place the scale enters, and it is monotonic in the scale). The
-    sweep's numba kernels use this to read the directions of a variant in a few operations
-    per element, and leave the variants it cannot decide to the own-scale rule.
+    force test is the only place the scale enters, and it is monotonic in the scale).
+    :func:`read_codes` uses this to take the own scales only of the points the bound does
+    not decide; the sweep's numba kernels to read the directions of a variant in a few
+    operations per element, leaving the variants it cannot decide to the own-scale rule.
 
     >>> element_load(-2.0, 1.0, 3.0)        # 3 on gear a, 6 on gear b, 9 on the carrier
     18.0

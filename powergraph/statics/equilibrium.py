@@ -8,6 +8,7 @@ drives). Each body's element torques plus its external torque sum to zero. Unkno
 from __future__ import annotations
 
 from functools import lru_cache
+from types import MappingProxyType
 from typing import Mapping, NamedTuple
 
 import numpy as np
@@ -16,18 +17,8 @@ from powergraph.errors import StaticsError
 from powergraph.kinematics import Element, Kinematics, element_stencil
 from powergraph.kinematics.elements import ELEMENT_BODIES
 from powergraph.kinematics.system import TrainSystem, system_of
-from powergraph.linalg import (
-    COND_LIMIT,
-    PLAIN_UP_TO,
-    SVD_RTOL,
-    Triplets,
-    equilibrated,
-    others,
-    solve_dense_square,
-    solve_plain,
-    solve_square,
-    use_sparse,
-)
+from powergraph.linalg import (SVD_RTOL, Triplets, equilibrated, others, solve_square,
+                               unique_inverse)
 from powergraph.model.spec import Model
 
 
@@ -116,19 +107,23 @@ def solve_equilibrium(model: Model, elements: tuple[Element, ...], loads: Loads,
     between indeterminate load sharing (minimum-norm forces), undetermined loads and
     contradictory loads.
     """
-    row = {body.id: r for r, body in enumerate(model.bodies)}
+    structure = _structure_of(tuple(body.id for body in model.bodies),
+                              tuple(map(ELEMENT_BODIES, elements)), loads.unknown)
     n_el = len(elements)
     rhs = np.zeros(len(model.bodies))
     for body, torque in loads.given.items():
-        rhs[row[body]] -= torque
+        rhs[structure.row[body]] -= torque
     if guess is None and speeds is not None:
         guess = expected_sizes(elements, loads, speeds)
-    solution, indeterminate = _solve_small(model, elements, loads, factors, rhs, guess), False
+    solution, indeterminate = None, False
+    if structure.forces_first:
+        solution = _solve_forces_first(structure, [el.ratio for el in elements], factors, rhs,
+                                       guess)
     if solution is None:
         system = equilibrium_triplets(model, elements, loads, factors)
-        solution, indeterminate = _solve(system, rhs, n_el, loads, guess)
+        solution, indeterminate = _solve(system, rhs, n_el, loads)
     external = dict(loads.given)
-    external.update({body: float(solution[n_el + j]) for j, body in enumerate(loads.unknown)})
+    external.update(zip(loads.unknown, solution[n_el:].tolist()))
     return Equilibrium(forces=solution[:n_el], external=external, indeterminate=indeterminate)
 
 
@@ -143,141 +138,93 @@ def expected_sizes(elements: tuple[Element, ...], loads: Loads,
     return np.array([power / w if w > 0 else 0.0 for w in rel], dtype=float)
 
 
-class _Layout(NamedTuple):
-    """Where the torque balance's entries go, sorted by row then column (the order of
-    :class:`Triplets`): what :func:`_solve_small` needs besides the factors."""
+class _Structure(NamedTuple):
+    """Where the torque balance's entries go, for a structure (which bodies each element
+    touches, whose torques are unknown): it does not depend on the ratios or factors, so
+    it is kept for the last few structures (a solve re-solves one structure with new
+    factors; a friction solve with new efficiencies too).
 
-    order: np.ndarray        # entries (a, b, carrier of each element, then external) sorted
-    rows: np.ndarray         # their rows and columns, in that order
-    cols: np.ndarray
-    unknown_rows: np.ndarray  # the row of each unknown external torque, in column order
-    others: np.ndarray       # the other rows, which fix the forces
-    # per element, for its gear a, gear b and carrier: (row among ``others``, or -1;
-    # position among the unknown torques, or -1) — the plain-Python path's map
-    places: tuple[tuple[tuple[int, int], ...], ...]
-    system: TrainSystem      # the structure these come from
+    The balance's cells (row, element) with an element entry, sorted by row then column
+    (the order of :class:`Triplets`), and for each element entry (its stencil on gear a,
+    gear b and carrier, as :meth:`TrainSystem.balance_triplets` lists them) its cell
+    (duplicates, an element touching a body twice, are summed there); the cells on the
+    rows with no unknown torque, which fix the forces, renumbered among those rows; the
+    cells on each unknown torque's row."""
 
-
-def _layout(model: Model, elements: tuple[Element, ...], loads: Loads) -> _Layout | None:
-    """The layout of a small square balance whose unknown torques sit on distinct bodies
-    and whose elements touch three distinct bodies (else None: the general path). It
-    depends on which bodies each element touches only, so it is kept for the last few
-    structures (a friction solve re-solves one structure with new efficiencies)."""
-    if use_sparse(len(elements)):
-        return None
-    return _layout_of(tuple(body.id for body in model.bodies),
-                      tuple(map(ELEMENT_BODIES, elements)), loads.unknown)
+    row: Mapping[str, int]    # each body's row
+    system: TrainSystem
+    forces_first: bool        # square, and each unknown torque alone on its body
+    cell: np.ndarray          # the cell of each element entry (gear a's, b's, carriers')
+    force_cells: np.ndarray   # the cells on the other rows, their row among those, column
+    force_rows: np.ndarray
+    force_cols: np.ndarray
+    balance_rows: np.ndarray  # the rows with no unknown torque
+    torque_cells: np.ndarray  # the cells on the unknown torques' rows, the torque, column
+    torque_of: np.ndarray
+    torque_cols: np.ndarray
+    unknown_rows: np.ndarray  # the row of each unknown torque
 
 
 @lru_cache(maxsize=64)
-def _layout_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], ...],
-               unknown: tuple[str, ...]) -> _Layout | None:
+def _structure_of(body_ids: tuple[str, ...], triples: tuple[tuple[str, str, str], ...],
+                  unknown: tuple[str, ...]) -> _Structure:
     row = {body: r for r, body in enumerate(body_ids)}
-    n_el, n_ext = len(triples), len(unknown)
-    system = TrainSystem(len(body_ids), [[row[b] for b in triple] for triple in triples],
+    n_el, n_bodies = len(triples), len(body_ids)
+    system = TrainSystem(n_bodies, [[row[b] for b in triple] for triple in triples],
                          [row[b] for b in unknown])
-    unknown_rows = system.unknown
     rows, cols, _ = system.balance_triplets(np.ones(n_el))
-    square = len(body_ids) == n_el + n_ext and not use_sparse(n_el)
-    distinct = len(set((rows * (n_el + n_ext) + cols).tolist())) == len(rows)
-    if not (square and distinct and len(set(unknown_rows.tolist())) == n_ext):
-        return None
-    order = np.lexsort((cols, rows))
-    balance = others(len(body_ids), unknown_rows)
-    row_of = {int(body): i for i, body in enumerate(balance)}
-    unknown_of = {int(body): j for j, body in enumerate(unknown_rows)}
-    places = tuple(tuple((row_of.get(body, -1), unknown_of.get(body, -1)) for body in triple)
-                   for triple in system.places.tolist())
-    return _Layout(order, rows[order], cols[order], unknown_rows, balance, places, system)
+    entries = slice(0, 3 * n_el)        # then the unknown torques' ones
+    cells, cell = unique_inverse(rows[entries] * n_el + cols[entries])
+    cell_rows, cell_cols = cells // max(n_el, 1), cells % max(n_el, 1)
+    unknown_rows = system.unknown
+    forces_first = (n_bodies == n_el + len(unknown)
+                    and len(set(unknown_rows.tolist())) == len(unknown))
+    balance_rows = others(n_bodies, unknown_rows)
+    renumber = np.full(n_bodies, -1)
+    renumber[balance_rows] = np.arange(len(balance_rows))
+    torque_index = np.full(n_bodies, -1)
+    torque_index[unknown_rows] = np.arange(len(unknown_rows))
+    force_cells = np.flatnonzero(renumber[cell_rows] >= 0)
+    torque_cells = np.flatnonzero(torque_index[cell_rows] >= 0)
+    structure = _Structure(MappingProxyType(row), system, forces_first, cell, force_cells,
+                           renumber[cell_rows[force_cells]], cell_cols[force_cells],
+                           balance_rows, torque_cells, torque_index[cell_rows[torque_cells]],
+                           cell_cols[torque_cells], unknown_rows)
+    for array in structure[3:]:
+        array.flags.writeable = False
+    return structure
 
 
-def _solve_small(model: Model, elements: tuple[Element, ...], loads: Loads, factors,
-                 rhs: np.ndarray, guess: np.ndarray | None) -> np.ndarray | None:
-    """:func:`_solve_forces_first` for a small balance on a dense matrix built from the
-    cached layout (the same numbers, without rebuilding the structure each time); None
-    when the layout does not apply or the forces' part is not regular."""
-    layout = _layout(model, elements, loads)
-    if layout is None:
-        return None
-    n_el = len(elements)
-    if n_el <= PLAIN_UP_TO:
-        return _solve_plain(layout, elements, factors, rhs, guess)
-    values = layout.system.balance_triplets([el.ratio for el in elements],
-                                            factors)[2][layout.order]
-    matrix = np.zeros((len(rhs), len(rhs)))
-    matrix[layout.rows, layout.cols] = values
-    matrix += 0.0   # no negative zeros, as Triplets drops them
-    solved = solve_dense_square(matrix[layout.others][:, :n_el], rhs[layout.others],
-                                None if guess is None else guess[:n_el])
-    if not solved.regular:
-        return None
-    x = np.zeros(len(rhs))
-    x[:n_el] = solved.x
-    force = layout.cols < n_el
-    element_torques = np.bincount(layout.rows[force],
-                                  weights=values[force] * solved.x[layout.cols[force]],
-                                  minlength=len(rhs))
-    x[n_el:] = rhs[layout.unknown_rows] - element_torques[layout.unknown_rows]
-    return x
-
-
-def _solve_plain(layout: _Layout, elements: tuple[Element, ...], factors,
-                 rhs: np.ndarray, guess: np.ndarray | None) -> np.ndarray | None:
-    """:func:`_solve_small`'s steps on plain Python floats (a few elements: no numpy
-    call costs more than the arithmetic): the forces from the rows of the bodies with no
-    unknown torque, then each unknown torque from its own body's row."""
-    n_el = len(elements)
-    matrix = [[0.0] * n_el for _ in range(n_el)]
-    torques = rhs[layout.unknown_rows].tolist()
-    balance = rhs[layout.others].tolist()
-    terms: list[list[tuple[int, float]]] = [[] for _ in torques]
-    for k, (el, f, places) in enumerate(zip(elements, np.asarray(factors, dtype=float).tolist(),
-                                            layout.places)):
-        for (row, unknown), coefficient in zip(places, element_stencil(el.ratio, f)):
-            if row >= 0:
-                matrix[row][k] += coefficient
-            else:
-                terms[unknown].append((k, coefficient))
-    forces, cond = solve_plain(matrix, balance, None if guess is None
-                               else guess[:n_el].tolist())
-    if forces is None or not cond < COND_LIMIT:
-        return None
-    for j, body_terms in enumerate(terms):
-        total = 0.0
-        for k, coefficient in body_terms:
-            total += coefficient * forces[k]
-        torques[j] -= total
-    return np.array(forces + torques)
-
-
-def _solve_forces_first(system: Triplets, rhs: np.ndarray, n_el: int,
+def _solve_forces_first(structure: _Structure, ratios, factors, rhs: np.ndarray,
                         guess: np.ndarray | None) -> np.ndarray | None:
     """A square balance with the unknown external torques eliminated first: each one
     appears in its own body's row only, so the other rows fix the forces (solved scaled)
-    and its row then gives it. None when that part is not regular (or two unknown torques
-    share a body)."""
-    unknown_rows = system.rows[system.cols >= n_el]
-    if len(set(unknown_rows.tolist())) != system.shape[1] - n_el:
-        return None
-    balance = others(system.shape[0], unknown_rows)
-    forces_part = system.part(balance, np.arange(n_el))
-    solved = solve_square(forces_part, rhs[balance], None if guess is None else guess[:n_el])
+    and its row then gives it. None when that part is not regular."""
+    s = structure
+    n_el = s.system.n_elements
+    on_a, on_b, on_c = element_stencil(np.asarray(ratios, dtype=float), factors)
+    values = np.concatenate([np.full(n_el, on_a), on_b, on_c])
+    summed = np.bincount(s.cell, weights=values, minlength=len(s.force_cols) + len(s.torque_cols))
+    part = summed[s.force_cells]
+    rows, cols = s.force_rows, s.force_cols
+    if not part.all():      # no exact zeros, as Triplets.build drops them
+        kept = part != 0.0
+        rows, cols, part = rows[kept], cols[kept], part[kept]
+    forces_part = Triplets(rows, cols, part, (len(s.balance_rows), n_el))
+    solved = solve_square(forces_part, rhs[s.balance_rows],
+                          None if guess is None else guess[:n_el])
     if not solved.regular:
         return None
-    x = np.zeros(system.shape[1])
-    x[:n_el] = solved.x
-    element_torques = system.part(np.arange(system.shape[0]), np.arange(n_el)).dot(solved.x)
-    order = system.cols[system.cols >= n_el]
-    x[order] = rhs[unknown_rows] - element_torques[unknown_rows]
-    return x
+    element_torques = np.bincount(s.torque_of, weights=summed[s.torque_cells]
+                                  * solved.x[s.torque_cols], minlength=len(s.unknown_rows))
+    return np.concatenate([solved.x, rhs[s.unknown_rows] - element_torques])
 
 
-def _solve(system: Triplets, rhs: np.ndarray, n_el: int, loads: Loads,
-           guess: np.ndarray | None = None) -> tuple[np.ndarray, bool]:
-    if system.shape[0] == system.shape[1]:
-        x = _solve_forces_first(system, rhs, n_el, guess)
-        if x is not None:
-            return x, False
+def _solve(system: Triplets, rhs: np.ndarray, n_el: int,
+           loads: Loads) -> tuple[np.ndarray, bool]:
+    """A balance the forces-first solve does not determine: by the singular values of the
+    equilibrated balance, indeterminate load sharing (minimum-norm forces), or an error
+    naming undetermined or contradictory loads."""
     matrix = system.dense()
     _, s, vt = np.linalg.svd(equilibrated(matrix))
     rank = int(np.sum(s > SVD_RTOL * max(1.0, s[0]))) if s.size else 0

@@ -26,7 +26,6 @@ import numpy as np
 
 from powergraph.errors import Caveat
 from powergraph.records import record
-from powergraph.statics.directions import nan_max
 
 #: When every port's power is at or below this (W), no power passes.
 ABSOLUTE_ZERO = 1e-12
@@ -158,8 +157,8 @@ def flow_efficiency_point(input_power: float, output_power: float) -> float:
     [0.9, 0.8, nan]
     """
     p_in, p_out = input_power, -output_power
-    entering = nan_max(p_in, 0.0) + nan_max(p_out, 0.0)
-    leaving = nan_max(-p_in, 0.0) + nan_max(-p_out, 0.0)
+    entering = float(np.maximum(p_in, 0.0) + np.maximum(p_out, 0.0))
+    leaving = float(np.maximum(-p_in, 0.0) + np.maximum(-p_out, 0.0))
     if entering > 0.0:
         eta = leaving / entering
         return 1.0 if 1.0 < eta <= 1.0 + ROUND_OFF else eta

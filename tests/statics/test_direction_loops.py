@@ -1,9 +1,10 @@
-"""The per-point forms of the direction rule (compiled by the sweep's numba kernels) agree
-with the numpy forms every other evaluator uses, checked with hypothesis on random
-structures and values: forces at and below the round-off threshold, zero relative speeds,
-elements on the frame only, no frame (-1). The kernels read the codes on a bound of the
-own scales; where that names a driver (or the speed is zero) it must be the own-scale
-rule's code. Pure Python here: numba is not needed."""
+"""The direction rule read on a bound of the own scales (as the sweep's numba kernels and
+read_codes' screening of many points read it) agrees with the own-scale rule every
+evaluator uses, checked with hypothesis on random structures and values: forces at and
+below the round-off threshold, zero relative speeds, elements on the frame only, no frame
+(-1). Where the bound names a driver (or the speed is zero) it must be the own-scale
+rule's code. The per-value rules are the numpy functions on floats (0-d); the same
+functions compiled by numba are checked against them at the end (skipped without numba)."""
 from __future__ import annotations
 
 import math
@@ -17,8 +18,8 @@ from hypothesis import strategies as st  # noqa: E402
 
 from powergraph.kinematics import element_stencil  # noqa: E402
 from powergraph.statics.directions import (FORCE_NOISE, SCALE_BOUND,  # noqa: E402
-                                           driver_code, element_load, nan_max, read_codes,
-                                           relative_speed, relative_speed_point)
+                                           driver_codes, element_load, read_codes,
+                                           relative_speed)
 from powergraph.statics.ports import (flow_efficiency_of_roles,  # noqa: E402
                                       flow_efficiency_point)
 
@@ -56,15 +57,16 @@ def direction_problems(draw):
 
 
 def bound_codes(bodies, ratios, forces, factors, rel, load, frame) -> np.ndarray:
-    """The codes the sweep's kernels read: :func:`driver_code` on SCALE_BOUND times every
-    torque magnitude on the train (the external ones and each element's own)."""
+    """The codes the sweep's kernels read: :func:`driver_codes` of each value on
+    SCALE_BOUND times every torque magnitude on the train (the external ones and each
+    element's own), summed in the kernels' order."""
     out = np.zeros(forces.shape, dtype=np.int8)
     for p in range(forces.shape[1]):
         total = 0.0 + sum(load[:, p].tolist())
         for k in range(forces.shape[0]):
             total += element_load(ratios[k, p], factors[k, p], forces[k, p])
         for k in range(forces.shape[0]):
-            out[k, p] = driver_code(forces[k, p], rel[k, p], SCALE_BOUND * total)
+            out[k, p] = driver_codes(forces[k, p], rel[k, p], SCALE_BOUND * total)
     return out
 
 
@@ -158,29 +160,10 @@ values = st.one_of(finite, st.just(0.0), st.just(1.0), st.just(math.nan),
 
 
 @SETTINGS
-@given(values, values, values, st.floats(-1e-15, 1e-15))
-def test_relative_speed_point_is_relative_speed(w_a, w_b, w_c, nudge) -> None:
-    for c in (w_c, w_a * (1.0 + nudge) if math.isfinite(w_a) else w_c):
-        with np.errstate(invalid="ignore"):     # inf - inf: NaN in both forms
-            expected = float(relative_speed(np.array([w_a]), np.array([w_b]),
-                                            np.array([c]))[0])
-        got = relative_speed_point(w_a, w_b, c)
-        assert got == expected or (math.isnan(got) and math.isnan(expected))
-
-
-@SETTINGS
 @given(values, values)
 def test_flow_efficiency_point_is_flow_efficiency_of_roles(p_in, p_out) -> None:
     expected = float(flow_efficiency_of_roles(np.array([p_in]), np.array([p_out]))[0])
     got = flow_efficiency_point(p_in, p_out)
-    assert got == expected or (math.isnan(got) and math.isnan(expected))
-
-
-@SETTINGS
-@given(values, values)
-def test_nan_max_is_np_maximum(a, b) -> None:
-    expected = float(np.maximum(a, b))
-    got = nan_max(a, b)
     assert got == expected or (math.isnan(got) and math.isnan(expected))
 
 
@@ -194,4 +177,34 @@ def test_a_force_exactly_at_the_threshold_passes_nothing(above: bool) -> None:
     assert read_codes(np.array([[0, 0, 1]]), np.array([1.0]), np.array([force]),
                       np.array([1.0]), np.array([1.0]), np.array([0.0, 1.0]), 0
                       ).tolist() == [expected]
-    assert driver_code(force, 1.0, 1.0) == expected
+    assert driver_codes(force, 1.0, 1.0) == expected
+
+
+@pytest.fixture(scope="module")
+def compiled():
+    """The sweep kernels' compiled rules (numba)."""
+    pytest.importorskip("numba")
+    from powergraph.analyses.sweep import kernel
+
+    return kernel
+
+
+@SETTINGS
+@given(values, values, values, st.floats(-1e-15, 1e-15))
+def test_the_compiled_relative_speed_is_numpys(compiled, w_a, w_b, w_c, nudge) -> None:
+    """The kernels compile :func:`relative_speed` on floats, its selection a branch: the
+    same number as numpy's, NaN and infinities included."""
+    for c in (w_c, w_a * (1.0 + nudge) if math.isfinite(w_a) else w_c):
+        with np.errstate(invalid="ignore"):     # inf - inf: NaN in both
+            expected = float(relative_speed(np.array([w_a]), np.array([w_b]),
+                                            np.array([c]))[0])
+        got = compiled.jit_relative_speed(w_a, w_b, c)
+        assert got == expected or (math.isnan(got) and math.isnan(expected))
+
+
+@SETTINGS
+@given(force, st.one_of(values, st.just(0.0)), st.one_of(values, st.floats(0.0, 1e3)))
+def test_the_compiled_driver_codes_are_numpys(compiled, force, rel, scale) -> None:
+    with np.errstate(invalid="ignore"):
+        expected = int(driver_codes(np.array([force]), np.array([rel]), np.array([scale]))[0])
+    assert compiled.jit_driver_codes(force, rel, scale) == expected

@@ -21,10 +21,12 @@ instead of the own scales' scatter over bodies. Where the bound names a driver (
 relative speed is zero) its code is the own-scale rule's; a variant with a code the bound
 cannot decide is left to the numpy path like one whose pattern fails.
 
-The rules are not written again here: the direction rule, the zero relative speed, the
-element's load, the flow efficiency and the allowed values are the plain-Python per-point
-forms of :mod:`powergraph.statics.directions`, :mod:`powergraph.statics.ports` and
-:mod:`powergraph.analyses.sweep.paths`, compiled by numba as they are.
+The rules are not written again here: the direction rule, the zero relative speed and the
+element's load are the numpy functions of :mod:`powergraph.statics.directions`, compiled
+by numba on floats (their one selection, :func:`~powergraph.statics.directions.where`,
+bound to a branch here); the flow efficiency and the allowed values are the per-point
+forms of :mod:`powergraph.statics.ports` and :mod:`powergraph.analyses.sweep.paths`,
+compiled as they are.
 
 The generated source is written to a cache directory under a name that hashes it (and
 the sources of those rules and numba's version), imported from there and compiled with
@@ -75,7 +77,7 @@ if "NUMBA_THREADING_LAYER" not in os.environ:
 
 
 def _jit(function: Callable) -> Callable:
-    """``numba.njit`` of a plain-Python rule, resolving its globals in this module: the
+    """``numba.njit`` of a rule, resolving its globals in this module: the
     functions it calls are their compiled forms here (numba caches a kernel only when
     every function it calls lives in an importable module)."""
     clone = types.FunctionType(function.__code__, globals(), function.__name__,
@@ -92,11 +94,19 @@ MAX_TEETH = _paths.MAX_TEETH
 MAX_RATIO = _paths.MAX_RATIO
 SPEED_NOISE, FORCE_NOISE = _directions.SPEED_NOISE, _directions.FORCE_NOISE
 ROUND_OFF = _ports.ROUND_OFF
-nan_max = jit_nan_max = _jit(_directions.nan_max)
+
+
+@numba.njit(error_model="numpy")
+def where(condition, x, y):
+    """:func:`powergraph.statics.directions.where` on floats: a branch (numba's
+    ``np.where`` would make an array of a float)."""
+    return x if condition else y
+
+
 element_stencil = jit_element_stencil = _jit(_elements.element_stencil)
-jit_driver_code = _jit(_directions.driver_code)
+jit_driver_codes = _jit(_directions.driver_codes)
 jit_element_load = _jit(_directions.element_load)
-jit_relative_speed_point = _jit(_directions.relative_speed_point)
+jit_relative_speed = _jit(_directions.relative_speed)
 jit_flow_efficiency_point = _jit(_ports.flow_efficiency_point)
 #: The allowed swept values, by kind (:func:`~powergraph.analyses.sweep.paths.value_allowed`).
 ALLOWED = {"teeth": _jit(_paths.teeth_allowed), "efficiency": _jit(_paths.efficiency_allowed),
@@ -215,7 +225,7 @@ def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str], allowed: 
     torque = [f"o{2 + n_b + i}" for i in range(len(lay.loads))]
     body = inputs + expression_lines(form)
     body += [f"r{k} = {lay.signs[k]!r} * q{k}" for k in range(n_el)]
-    body += [f"rel{k} = relative_speed_point({speed[a]}, {speed[b]}, {speed[c]})"
+    body += [f"rel{k} = relative_speed({speed[a]}, {speed[b]}, {speed[c]})"
              for k, (a, b, c) in enumerate(lay.places)]
     checks = ["(o0 > o1)"] + [f"math.isfinite({t} * {speed[load.body]})"
                               for load, t in zip(lay.loads, torque)] + allowed
@@ -233,7 +243,7 @@ def kernel_source(form: "ClosedForm", n_swept: int, inputs: list[str], allowed: 
         loads = ([f"abs({t})" for t in torque] + [f"abs({f})" for f in forces[n_el:]]
                  + [f"element_load(r{k}, f{p}_{k}, {forces[k]})" for k in range(n_el)])
         body.append(f"u{p} = {SCALE_BOUND!r} * ({' + '.join(['0.0'] + loads)})")
-        body += [f"d{p}_{k} = driver_code({forces[k]}, rel{k}, u{p})" for k in range(n_el)]
+        body += [f"d{p}_{k} = driver_codes({forces[k]}, rel{k}, u{p})" for k in range(n_el)]
         checks += [f"(d{p}_{k} == {code})" if code else
                    f"((rel{k} == 0.0) | ({forces[k]} == 0.0))"    # proves "nothing passes"
                    for k, code in zip(form.moving, expected)]
@@ -285,10 +295,10 @@ import numba
 import numpy as np
 
 from powergraph.analyses.sweep.kernel import (
-    ALLOWED, jit_driver_code as driver_code, jit_element_load as element_load,
+    ALLOWED, jit_driver_codes as driver_codes, jit_element_load as element_load,
     jit_flow_efficiency_point as flow_efficiency_point,
     jit_port_value_allowed as port_value_allowed,
-    jit_relative_speed_point as relative_speed_point)
+    jit_relative_speed as relative_speed)
 
 efficiency_allowed, ratio_allowed, teeth_allowed = (
     ALLOWED["efficiency"], ALLOWED["ratio"], ALLOWED["teeth"])
