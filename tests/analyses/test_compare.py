@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 import powergraph as pg
-from powergraph.analyses.compare import compare_models
+from powergraph.analyses.compare import compare_models, compare_row
 from powergraph.cli.main import main
 from powergraph.kinematics import backdriven
 from powergraph.model import loads_model
@@ -20,7 +20,7 @@ KEYS = {"name", "ratio", "efficiency", "backdrive_efficiency", "backdrive_self_l
 
 def test_rows_match_single_solves_exactly() -> None:
     paths = sorted(MODELS.glob("*.yaml"))
-    models = [pg.load_model(p) for p in paths]
+    models = [m for m in map(pg.load_model, paths) if not m.modes]   # modes: below
     for model, row in zip(models, compare_models(models)):
         forward = pg.solve(model)
         assert_conservation(forward)
@@ -144,3 +144,25 @@ def test_a_step_up_reads_1_to_n(capsys) -> None:
     assert table[0].ratio == pytest.approx(0.25)
     row = table.text_report().splitlines()[2]
     assert "1 : 4" in row and "0.25" not in row
+
+
+def test_a_mode_row_is_its_case_forward_and_coasting() -> None:
+    """A row of ``MODEL:MODE`` is the mode's case (``solve --mode``) forward and back-driven
+    (``solve --mode --backdrive``); a model with modes needs its mode."""
+    from powergraph.errors import UsageError
+    from powergraph.statics.case import TrainCase
+
+    model = pg.load_model(MODELS / "simpson_3speed.yaml")
+    with pytest.raises(UsageError, match="the model has modes"):
+        compare_models([model])
+    for mode in model.modes:
+        row = compare_row(model, mode)
+        forward = TrainCase.of(model, mode).point()
+        coast = TrainCase.of(model, mode, backdrive=True).point()
+        assert row.efficiency == forward.result.efficiency
+        assert row.ratio == forward.result.ratio
+        if coast.result is None:          # first gear: F1 overruns when the output drives
+            assert row.backdrive_efficiency is None
+            assert row.backdrive_note == f"coasting: {coast.verdict}"
+        else:
+            assert row.backdrive_efficiency == coast.result.efficiency
