@@ -28,7 +28,6 @@ from __future__ import annotations
 from contextlib import contextmanager
 from typing import Any, Callable, Iterable, Iterator
 
-from powergraph.model.block_bearing import gear_radius, load_meshes
 from powergraph.model.graph import unique_name
 from powergraph.model.spec import Model
 from powergraph.records import record
@@ -59,6 +58,10 @@ class LossSource:
 def bearings(model: Model) -> Iterator[LossSource]:
     """Each bearing link with a ``friction:`` or ``drag:`` block (an open clutch or brake
     with its drag included)."""
+    if not any(link.type == "bearing" and link.blocks for link in model.links):
+        return
+    from powergraph.model.block_bearing import gear_radius, load_meshes  # trains with them
+
     names: set[str] = set()
     for link in model.links:
         if link.type != "bearing" or not link.blocks:
