@@ -349,3 +349,44 @@ def test_simpson_first_gear_coasting_is_refused_by_every_evaluator() -> None:
 
     with pytest.raises(UsageError, match="row 2: mode 1: no consistent freewheel state"):
         _cycle_row(model, "1", _at_input(model, 2500 * np.pi / 30, -20e3))
+
+
+@pytest.mark.slow
+def test_the_hybrid_through_every_evaluator_that_takes_it() -> None:
+    """The THS-II power split (machines on a bus, 2 DOF, no modes): its case's answer,
+    the same point as a duty-cycle row (solved with the other rows, the bus balance's
+    iteration batched) give the same efficiency and verdict; the evaluators that do not
+    take it say so in one line (the compiled sweep: machines on buses; the formulas: 1-DOF
+    trains; the gear table: no modes)."""
+    import io
+
+    from powergraph.analyses.cycle import cycle
+    from powergraph.analyses.formula import derive_formulas
+    from powergraph.analyses.gear_table import gear_table
+    from powergraph.statics.case import TrainCase
+
+    model = load_model(MODELS[0].parent / "ths2_power_split.yaml")
+    point = TrainCase.of(model).point()
+    assert_conservation(point.result)
+    columns = [(p.name or p.component, p) for p in model.ports if p.speed is not None
+               or p.power is not None or p.torque is not None]
+    header, cells = [], []
+    for name, port in columns:
+        for kind in ("speed", "power", "torque"):
+            value = getattr(port, kind)
+            if value is not None:
+                unit = {"speed": "rad/s", "power": "W", "torque": "N*m"}[kind]
+                header.append(f"{name}.{kind} [{unit}]")
+                cells.append(repr(value))
+    text = ",".join(header + ["duration [s]"]) + "\n" + (",".join(cells + ["1"]) + "\n") * 3
+    rows = cycle(model, io.StringIO(text))
+    assert rows.method == "sweep with bus balance"
+    for row in rows.rows:
+        assert row.verdict == point.verdict
+        assert row.efficiency == pytest.approx(point.result.efficiency, rel=1e-9)
+    with pytest.raises(UsageError, match="machines on buses"):
+        sweep(model, {"ports.0.speed": [model.ports[0].speed]}, quiet=True)
+    with pytest.raises(MethodNotApplicableError):
+        derive_formulas(model)
+    with pytest.raises(ModelError, match="no modes table"):
+        gear_table(model)

@@ -97,29 +97,31 @@ class GearTable:
         return plot_gear_table(self, ax=ax, **kwargs)
 
 
-def gear_table(model: Model, solve: Any = None) -> GearTable:
-    """Solve every mode of ``model`` forward and coasting.
+def gear_table(model: Model) -> GearTable:
+    """Every mode's case (:class:`~powergraph.statics.case.TrainCase`) forward and coasting.
 
     Parameters
     ----------
     model : Model
         A model with a ``modes`` table (one input, one output).
-    solve : callable, optional
-        The solver (default :func:`powergraph.statics.solve`).
 
     Raises
     ------
     ModelError
         ``modes.NAME: ...`` for the first mode that cannot be solved (docs/modes.md).
     """
-    rows = [_row(model, mode, solve) for mode in model.modes]
+    if not model.modes:
+        from powergraph.errors import ModelError
+
+        raise ModelError("the model has no modes table (docs/modes.md)", "modes")
+    rows = [_row(model, mode) for mode in model.modes]
     forward = [i for i, r in enumerate(rows) if r.ratio > 0]
     for i, j in zip(forward, forward[1:]):
         rows[i] = dataclasses.replace(rows[i], step=rows[i].ratio / rows[j].ratio)
     return GearTable(model=model, rows=tuple(rows))
 
 
-def _row(model: Model, mode: str, solve: Any) -> GearRow:
+def _row(model: Model, mode: str) -> GearRow:
     forward = TrainCase.of(model, mode).point()
     forward.required()
     result, moded = forward.result, forward.moded
