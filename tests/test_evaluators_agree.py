@@ -18,7 +18,7 @@ import powergraph as pg
 from powergraph.analyses.efficiency_grid import at_point, solve_grid
 from powergraph.analyses.sweep import STATUS, sweep
 from powergraph.analyses.sweep.backends import applies
-from powergraph.analyses.sweep.compile import compile_sweep
+from powergraph.analyses.sweep.entry import compile_sweep
 from powergraph.errors import MethodNotApplicableError, ModelError, UsageError
 from powergraph.kinematics import elements_of
 from powergraph.model import load_model, loads_model

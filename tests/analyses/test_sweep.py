@@ -516,7 +516,8 @@ def test_sweep_reuses_the_compiled_form_of_the_same_model_and_paths() -> None:
     answers are those of a fresh compile."""
     import dataclasses
 
-    from powergraph.analyses.sweep.compile import CompiledSweep, compiled_for
+    from powergraph.analyses.sweep.compile import CompiledSweep
+    from powergraph.analyses.sweep.entry import compiled_for
 
     model = load_model(ROOT / "models" / "rv40e_wang2021.yaml")
     values = {"links.1.efficiency": np.linspace(0.9, 0.99, 7)}

@@ -17,7 +17,8 @@ Examples
 """
 from __future__ import annotations
 
-from powergraph.analyses.sweep.compile import CompiledSweep, compile_sweep, sweep
+from powergraph.analyses.sweep.compile import CompiledSweep
+from powergraph.analyses.sweep.entry import compile_sweep, sweep
 from powergraph.analyses.sweep.paths import (Parameter, cartesian, parse_path, parse_set,
                                              parse_sets)
 from powergraph.analyses.sweep.result import STATUS, SweepResult

@@ -25,13 +25,14 @@ from powergraph.analyses.sweep.evaluate import Chunk, Outputs, evaluate_chunk
 from powergraph.analyses.sweep.layout import Layout, base_values, layout_of
 from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_all,
                                              check_values, flat_values, parse_paths)
-from powergraph.analyses.sweep.result import (CYCLE, LOADS, LOCKED, NO_FREEWHEEL_STATE, OK,
+from powergraph.analyses.sweep.result import (CYCLE, LOADS, NO_FREEWHEEL_STATE,
                                              UNSETTLED, SweepResult, converged_of)
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
-from powergraph.statics import PowerFlowResult, solve
+from powergraph.statics import solve
 from powergraph.statics.friction import loss_block_places
-from powergraph.statics.ports import flow_efficiency_point
+from powergraph.analyses.sweep.single import write_failed as _write_failed
+from powergraph.analyses.sweep.single import write_single as _write_single
 
 #: Variants evaluated at once: small enough to keep the work arrays in cache (measured
 #: fastest on the RV benchmark among 8k, 12k, 16k, 24k, 32k and 64k).
@@ -292,7 +293,7 @@ class CompiledSweep:
         --------
         >>> from powergraph.model import load_model
         >>> rv = load_model("models/rv40e_wang2021.yaml")
-        >>> compile_sweep(rv, ["links.1.efficiency"]).variant(
+        >>> CompiledSweep(rv, ["links.1.efficiency"]).variant(
         ...     {"links.1.efficiency": [0.9, 0.95]}, 1).links[1].efficiency
         0.95
         """
@@ -403,31 +404,6 @@ def _check_scalars(params: tuple[Parameter, ...], arrays: Mapping[str, np.ndarra
         raise
 
 
-def _write_single(out: Outputs, j: int, result: PowerFlowResult, layout: Layout) -> None:
-    """The single solver's answer for variant ``j`` of ``out``."""
-    out.ratio[j] = np.nan if result.ratio is None else result.ratio
-    out.input_power[j], out.output_power[j] = result.input_power, result.output_power
-    out.efficiency[j] = 0.0 if result.lock is not None else \
-        flow_efficiency_point(result.input_power, result.output_power)
-    out.total_loss[j] = result.total_loss
-    out.self_locking[j] = result.self_locking
-    out.status[j] = LOCKED if result.lock is not None else OK
-    out.passes[j] = min(result.passes, 127)
-    by_link = {flow.link: flow for flow in result.elements}
-    for k, link in enumerate(layout.links):
-        flow = by_link[link]
-        out.losses[k, j] = flow.loss
-        out.codes[k, j] = 0 if flow.driver is None else (1 if flow.driver == flow.a else -1)
-
-
-def _write_failed(out: Outputs, j: int, status: int) -> None:
-    """Variant ``j`` of ``out`` has no answer (``status`` says why): NaN powers."""
-    for name in ("ratio", "efficiency", "input_power", "output_power", "total_loss"):
-        getattr(out, name)[j] = np.nan
-    out.self_locking[j], out.status[j], out.passes[j] = False, status, 0
-    out.losses[:, j], out.codes[:, j] = np.nan, 0
-
-
 def kernel_module():
     """:mod:`powergraph.analyses.sweep.kernel`, or None when numba does not import."""
     try:
@@ -470,65 +446,3 @@ def refuse_loss_blocks(model: Model, what: str) -> None:
     if places:
         raise ModelError(f"{what} takes constant efficiencies; replace this block by an "
                          f"efficiency, or use powergraph solve / map", places[0])
-
-
-def compile_sweep(model: Model, paths: Sequence[str], backend: str = "auto",
-                  mode: str | None = None) -> CompiledSweep:
-    """Compile ``model`` once into an evaluator over arrays of the values at ``paths``.
-
-    See :class:`CompiledSweep`.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from powergraph.model import load_model
-    >>> evaluate = compile_sweep(load_model("models/rv40e_wang2021.yaml"),
-    ...                          ["components.1.teeth", "links.*.efficiency"])
-    >>> r = evaluate({"components.1.teeth": 12, "links.*.efficiency": [0.94, 0.99]})
-    >>> np.round(r.ratio, 9).tolist(), np.round(r.efficiency, 6).tolist()
-    ([121.0, 121.0], [0.287376, 0.714608])
-    """
-    return CompiledSweep(model, paths, backend, mode)
-
-
-def sweep(model: Model, values: Mapping[str, Any], *, backend: str = "auto",
-          chunk_size: int = CHUNK_SIZE, quiet: bool = False,
-          mode: str | None = None) -> SweepResult:
-    """Compile ``model`` for the PATHs of ``values`` and evaluate them (one call).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from powergraph.model import load_model
-    >>> r = sweep(load_model("models/planetary_2kh_sun_to_carrier.yaml"),
-    ...           {"components.ring.teeth": np.array([48, 72, 96])})
-    >>> np.round(r.ratio, 12).tolist()
-    [3.0, 4.0, 5.0]
-    """
-    return compiled_for(model, list(values), backend, mode)(values, chunk_size=chunk_size,
-                                                             quiet=quiet)
-
-
-#: Compiled sweeps kept per model (the last few PATH sets), so that calling
-#: :func:`sweep` again on the same model and PATHs reuses its closed forms and kernels.
-KEEP_COMPILED = 8
-
-
-def compiled_for(model: Model, paths: Sequence[str], backend: str = "auto",
-                 mode: str | None = None) -> CompiledSweep:
-    """The :class:`CompiledSweep` of ``model`` for ``paths``, compiled on the first call
-    and kept in the model's own store (``Model.derived``, which ``==`` ignores and a
-    changed copy starts without) for the next ones.
-
-    >>> from powergraph.model import load_model
-    >>> rv = load_model("models/rv40e_wang2021.yaml")
-    >>> compiled_for(rv, ["links.1.efficiency"]) is compiled_for(rv, ["links.1.efficiency"])
-    True
-    """
-    kept = model.derived.setdefault("analyses.sweep.compiled", {})
-    key = (tuple(paths), backend, mode)
-    if key not in kept:
-        if len(kept) >= KEEP_COMPILED:
-            del kept[next(iter(kept))]
-        kept[key] = CompiledSweep(model, paths, backend, mode)
-    return kept[key]

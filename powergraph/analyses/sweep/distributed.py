@@ -23,7 +23,8 @@ from uuid import uuid4
 import numpy as np
 
 from powergraph.analyses.parallel import map_chunks
-from powergraph.analyses.sweep.compile import CHUNK_SIZE, compile_sweep
+from powergraph.analyses.sweep.compile import CHUNK_SIZE
+from powergraph.analyses.sweep.entry import compile_sweep
 from powergraph.analyses.sweep.paths import (broadcast_values, flat_values, parse_paths,
                                              shaped_views)
 from powergraph.analyses.sweep.result import SweepResult

@@ -75,7 +75,8 @@ class ToleranceEvaluator:
         efficiency = [t.path for t in self.tolerances.entries if t.target.kind == "efficiency"]
         self._sweep = None
         if efficiency:
-            from powergraph.analyses.sweep.compile import compile_sweep, refuse_loss_blocks
+            from powergraph.analyses.sweep.compile import refuse_loss_blocks
+            from powergraph.analyses.sweep.entry import compile_sweep
 
             refuse_loss_blocks(model, "the tolerance analysis's efficiency")
             self._sweep = compile_sweep(model, efficiency)
