@@ -62,6 +62,9 @@ class EfficiencyMap(Displayed):
     input_power: np.ndarray = field(default=None, repr=False)
     unconverged: tuple[tuple[float, float], ...] = ()
     single_solves: int = 0
+    #: ``(speed rpm, torque)`` points of a mode where no freewheel state is consistent
+    #: (their efficiency is NaN): the gear cannot carry that load.
+    no_freewheel_state: tuple[tuple[float, float], ...] = ()
 
     def _summary(self) -> str:
         return (f"{self.name}: {len(self.speeds_rpm)} speeds × {len(self.torques)} torques, "
@@ -76,12 +79,13 @@ class EfficiencyMap(Displayed):
 
     def to_dict(self) -> dict[str, Any]:
         """JSON view: ``{name, torques, speeds_rpm, efficiency (rows by speed), rated_torque,
-        load_dependent, unconverged}`` (NaN efficiencies as null)."""
+        load_dependent, unconverged, no_freewheel_state}`` (NaN efficiencies as null)."""
         values = [[None if math.isnan(e) else e for e in row] for row in self.efficiency.tolist()]
         return {"name": self.name, "torques": self.torques.tolist(),
                 "speeds_rpm": self.speeds_rpm.tolist(), "efficiency": values,
                 "rated_torque": self.rated_torque, "load_dependent": self.load_dependent,
-                "unconverged": [list(p) for p in self.unconverged]}
+                "unconverged": [list(p) for p in self.unconverged],
+                "no_freewheel_state": [list(p) for p in self.no_freewheel_state]}
 
     def text_report(self) -> str:
         lines = [f"{self.name} — efficiency map (%)" + ("" if self.load_dependent else
@@ -90,9 +94,11 @@ class EfficiencyMap(Displayed):
         cells += [[format_number(speed, 5), *(format_fixed(100 * e, 3) for e in row)]
                   for speed, row in zip(self.speeds_rpm, self.efficiency)]
         lines += aligned_table(cells, set(range(len(cells[0]))), rules_after=())
-        if self.unconverged:
-            lines.append(f"{len(self.unconverged)} point(s) did not converge (nan): " +
-                         ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in self.unconverged))
+        for points, what in ((self.unconverged, "did not converge"),
+                             (self.no_freewheel_state, "have no consistent freewheel state")):
+            if points:
+                lines.append(f"{len(points)} point(s) {what} (nan): " +
+                             ", ".join(f"{n:g} rpm {t:g} N·m" for n, t in points))
         return "\n".join(lines)
 
     def loss_map(self) -> dict[str, np.ndarray]:
@@ -203,8 +209,8 @@ def _case_map(case: TrainCase, torques: np.ndarray, speeds: np.ndarray,
     return EfficiencyMap(name=case.plain_model().name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
                          load_dependent=bool(loss_sources(case.model)), input_power=power,
-                         unconverged=tuple((float(speeds[i]), float(torques[j]))
-                                           for i, j in zip(*np.nonzero(failed))),
+                         no_freewheel_state=tuple((float(speeds[i]), float(torques[j]))
+                                                  for i, j in zip(*np.nonzero(failed))),
                          single_solves=int(values.size))
 
 

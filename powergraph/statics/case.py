@@ -9,11 +9,11 @@ duty cycle's rows, the sweep and the map of a mode, ``formula --mode``, the tole
 analysis — takes its operating state from :meth:`TrainCase.of` and its answer from
 :meth:`TrainCase.point`, so two of them cannot decide the state differently.
 
-Each answer carries its **verdict** (:data:`VERDICTS`): ``ok``, ``self-locking`` (the
-declared input cannot drive the output; the efficiency is 0), ``locked`` (the train stays
-at rest), ``no power`` (the efficiency is undefined), or why no state holds (``no
-consistent freewheel state (...)``). The verdict is a property of the answer, not of the
-evaluator that asked.
+Each answer carries its **verdict** (:data:`powergraph.statics.verdicts.VERDICTS`):
+``ok``, ``self-locking`` (the declared input cannot drive the output; the efficiency is
+0), ``locked`` (the train stays at rest), ``no power`` (the efficiency is undefined), or
+why no state holds (``no consistent freewheel state (...)``). The verdict is a property
+of the answer, not of the evaluator that asked.
 
 Examples
 --------
@@ -31,12 +31,13 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import field
+from functools import cached_property
 from typing import Any
 
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
 from powergraph.records import record
-from powergraph.statics.verdicts import MEANINGS, VERDICTS, verdict_of  # noqa: F401
+from powergraph.statics.verdicts import verdict_of
 
 @record
 class CasePoint:
@@ -45,7 +46,8 @@ class CasePoint:
     ``result`` is the power-flow result (None when no state is consistent: ``verdict``
     says why); ``moded`` the shift elements' states (a
     :class:`~powergraph.statics.modes.ModeResult`, None for a train without shift
-    elements); ``verdict`` one of :data:`VERDICTS` or why there is no result.
+    elements); ``verdict`` one of :data:`~powergraph.statics.verdicts.VERDICTS` or why
+    there is no result.
     """
 
     case: "TrainCase" = field(repr=False, compare=False)
@@ -127,7 +129,7 @@ class TrainCase:
         """The train has modes or shift elements (answers carry their states)."""
         return bool(self.model.modes or self.model.shift_elements)
 
-    @property
+    @cached_property
     def decides_freewheels(self) -> bool:
         """Freewheels are left to decide at each operating point (their state depends on
         the load), so no plain train stands for the case at every point."""
@@ -137,7 +139,7 @@ class TrainCase:
 
         return bool(freewheel_groups(self.base_model))
 
-    @property
+    @cached_property
     def base_model(self) -> Model:
         """The train in the mode, clutches and brakes as the mode says, freewheels open."""
         if not self.shifting:

@@ -201,3 +201,23 @@ def test_rows_whose_ends_differ_are_solved_point_by_point(monkeypatch) -> None:
     monkeypatch.setattr(module, "load_regime", lambda m, r: next(calls))
     pointwise = efficiency_map(model, [5.0, 20.0, 60.0], [300.0])
     assert np.allclose(pointwise.efficiency, affine.efficiency, rtol=1e-10, atol=0)
+
+
+def test_a_mode_whose_freewheel_depends_on_the_load_is_mapped_point_by_point() -> None:
+    """Simpson first gear drives through F1 (holds the rear carrier against backward
+    rotation). Turning the input forward, every point is the case's own answer (constant
+    efficiencies: the solve's 97.54 % everywhere); turned backward, F1 would have to hold
+    a torque of the sense it cannot: no consistent state, NaN, named in the report."""
+    from pathlib import Path
+
+    from powergraph.model import load_model
+    from powergraph.statics.case import TrainCase
+
+    model = load_model(Path(__file__).resolve().parents[2] / "models" / "simpson_3speed.yaml")
+    expected = TrainCase.of(model, "1").point().result.efficiency
+    result = efficiency_map(model, [50.0, 100.0], [-2500.0, 1000.0, 2500.0], mode="1")
+    assert np.all(np.isnan(result.efficiency[0]))
+    assert result.efficiency[1:] == pytest.approx(np.full((2, 2), expected), rel=1e-12)
+    assert result.no_freewheel_state == ((-2500.0, 50.0), (-2500.0, 100.0))
+    assert result.unconverged == ()
+    assert "2 point(s) have no consistent freewheel state" in result.text_report()
