@@ -27,6 +27,7 @@ Examples
 """
 from __future__ import annotations
 
+from powergraph.statics.loss_sources import losses
 from powergraph.statics.flow import BATTERY, GENERATOR, GROUND, LOSS, MOTOR
 from powergraph.statics.result import PowerFlowResult
 
@@ -46,14 +47,11 @@ def _scale(result: PowerFlowResult) -> float:
 def assert_power_balance(result: PowerFlowResult, rtol: float = RTOL) -> None:
     """Power in = power out + losses; the total loss is the elements' plus the bearings';
     no element loses a negative power."""
-    machines = getattr(result, "machines", ())
     battery = sum(b.battery_power for b in getattr(result, "buses", {}).values())
     _close(result.input_power + battery, result.output_power + result.total_loss,
            _scale(result), rtol, "power in (+ batteries) vs power out + losses")
-    _close(result.total_loss, sum(e.loss for e in result.elements)
-           + sum(b.loss for b in getattr(result, "bearings", ()))
-           + sum(m.loss for m in machines), _scale(result), rtol,
-           "total loss vs mesh losses + bearing losses + machine losses")
+    _close(result.total_loss, sum(loss for _, loss in losses(result)), _scale(result), rtol,
+           "total loss vs the sum of the loss sources' (meshes, bearings, drags, machines)")
     _assert_machines(result, rtol)
     for element in result.elements:
         if element.loss < -rtol * _scale(result):

@@ -13,7 +13,7 @@ import numpy as np
 from powergraph.analyses.cycle_columns import Columns
 from powergraph.statics.ports import capped
 from powergraph.statics.verdicts import verdict_codes
-from powergraph.analyses.cycle_rows import element_label
+from powergraph.statics.loss_sources import element_label, loss_sources
 from powergraph.analyses.cycle_train import PlainTrain, State, distinct_rows
 from powergraph.kinematics import element_stencil
 from powergraph.statics.directions import factors_for
@@ -55,8 +55,9 @@ def report(train: PlainTrain, state: State, rows: np.ndarray, columns: Columns) 
         values = state.losses[:, k]
         losses[element_label(model, element.link)] = (
             values if element.kind == "mesh" else np.where(values != 0, values, np.nan))
-    for j, port in enumerate(machines):
-        losses[f"machine {machine_name(port, model)}"] = machine_loss[:, j]
+    by_machine = [s for s in loss_sources(model) if s.applied == "machine"]
+    for j, source in enumerate(by_machine):
+        losses[source.label] = machine_loss[:, j]
     split = negative_split(train, state, machine_loss, batteries)
     out = -sum(np.minimum(powers[:, p.index], 0.0) for p in model.outputs)
     motoring = sum(np.maximum(mechanical[:, j], 0.0) for j in range(len(machines)))

@@ -17,6 +17,7 @@ from powergraph.analyses.cycle_columns import OK, Columns
 from powergraph.analyses.cycle_points import Points, as_dict
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
+from powergraph.statics.loss_sources import element_label, losses
 from powergraph.statics.verdicts import verdict_codes, verdict_of
 
 #: Errors of a numerical procedure (numpy's warnings are errors under the command line).
@@ -186,19 +187,7 @@ def _own_warnings(result) -> tuple[str, ...]:
     return tuple(dict.fromkeys(w.code for w in own))
 
 
-def element_label(model: Model, link: int) -> str:
-    """``links[2] mesh S-P``: an element of the loss totals."""
-    lk = model.links[link]
-    a, b = (model.raw_id(c) for c in lk.between)
-    return f"links[{link}] {lk.type} {a}-{b}"
-
-
 def solve_losses(result) -> dict[str, float]:
-    """``{element: W}`` of one solve: its elements, bearings and drags, machines."""
-    out = {element_label(result.model, e.link): e.loss for e in result.elements
-           if e.kind == "mesh" or e.loss}
-    for b in result.bearings:
-        out[b.node] = out.get(b.node, 0.0) + b.loss
-    for m in result.machines:
-        out[f"machine {m.name}"] = m.loss
-    return out
+    """``{loss source: W}`` of one solve (every loss source of its model, by label:
+    :mod:`powergraph.statics.loss_sources`)."""
+    return {source.label: loss for source, loss in losses(result)}

@@ -42,7 +42,7 @@ from powergraph.statics.bearings import (body_torques, bearing_torque, relative_
 from powergraph.statics.directions import (driver_codes, factors_for, own_scales,
                                            relative_speeds)
 from powergraph.statics.equilibrium import loads_of
-from powergraph.statics.loss_sources import loss_sources
+from powergraph.statics.loss_sources import torque_sources
 from powergraph.statics.friction import MAX_PASSES, friction_meshes, mesh_friction
 from powergraph.units_si import RAD_S_PER_RPM
 from powergraph.statics.ports import flow_efficiency_of_roles
@@ -305,14 +305,14 @@ class _Grid:
 
 def _bearing_specs(model: Model, row: dict, elements: tuple) -> list[dict]:
     """What :func:`powergraph.statics.bearings.bearing_states` reads, per loss source
-    (:func:`powergraph.statics.loss_sources.loss_sources`): the two bodies' rows, the
+    (:func:`powergraph.statics.loss_sources.torque_sources`): the two bodies' rows, the
     instances, the laws and the meshes loading it (as element columns)."""
     column = {el.link: k for k, el in enumerate(elements)}
     return [{"rows": tuple(row[model.body_of[c]] for c in source.between),
              "count": source.instances, "friction": source.friction, "drag": source.drag,
              "meshes": [(column[mesh], gear == elements[column[mesh]].a, radius, count)
                         for mesh, gear, radius, count in source.loaded_by]}
-            for source in loss_sources(model)]
+            for source in torque_sources(model)]
 
 
 def _eta(result) -> float:

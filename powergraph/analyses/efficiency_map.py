@@ -36,7 +36,7 @@ from powergraph.statics import solve
 from powergraph.statics.bearings import load_regime
 from powergraph.statics.case import TrainCase
 from powergraph.statics.friction import friction_meshes
-from powergraph.statics.loss_sources import loss_sources
+from powergraph.statics.loss_sources import torque_sources
 from powergraph.statics.ports import flow_efficiency_of_roles
 from powergraph.units_si import RAD_S_PER_RPM
 from powergraph.display import Displayed
@@ -178,7 +178,7 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     values = np.empty((speeds.size, torques.size))
     power = np.empty_like(values)
     for i, speed in enumerate(speeds):
-        if loss_sources(model):
+        if torque_sources(model):
             values[i], power[i] = _affine_row(model, speed * RAD_S_PER_RPM, torques, sense)
             continue
         for j, torque in enumerate(torques):
@@ -190,7 +190,7 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
             values[i, j], power[i, j] = _eta(result), result.input_power
     return EfficiencyMap(name=model.name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
-                         load_dependent=bool(loss_sources(model)), input_power=power)
+                         load_dependent=bool(torque_sources(model)), input_power=power)
 
 
 def _case_map(case: TrainCase, torques: np.ndarray, speeds: np.ndarray,
@@ -208,7 +208,7 @@ def _case_map(case: TrainCase, torques: np.ndarray, speeds: np.ndarray,
     failed = np.isnan(power)
     return EfficiencyMap(name=case.plain_model().name, torques=torques, speeds_rpm=speeds,
                          efficiency=values, rated_torque=rated_torque,
-                         load_dependent=bool(loss_sources(case.model)), input_power=power,
+                         load_dependent=bool(torque_sources(case.model)), input_power=power,
                          no_freewheel_state=tuple((float(speeds[i]), float(torques[j]))
                                                   for i, j in zip(*np.nonzero(failed))),
                          single_solves=int(values.size))

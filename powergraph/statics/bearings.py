@@ -56,7 +56,7 @@ from powergraph.kinematics.elements import gear_torque
 from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics.equilibrium import Loads, loads_of
-from powergraph.statics.loss_sources import LossSource, loss_sources
+from powergraph.statics.loss_sources import LossSource, torque_sources
 
 #: Relative speeds below this fraction of the two bodies' speeds are zero.
 SPEED_NOISE = 1e-12
@@ -101,14 +101,14 @@ class BearingState:
 
 
 def bearing_states(model: Model, result: Any) -> tuple[BearingState, ...]:
-    """Every loss source of ``model`` (:func:`powergraph.statics.loss_sources.loss_sources`:
+    """Every loss source of ``model`` (:func:`powergraph.statics.loss_sources.torque_sources`:
     its bearings with friction/drag, body drags, and any registered kind), evaluated at
     the speeds and tooth forces of ``result`` (a :class:`PowerFlowResult`).
 
     The torques are those of this result's forces: the solver iterates until they agree
     with the torques the balance was solved with.
     """
-    return tuple(_state(model, result, source) for source in loss_sources(model))
+    return tuple(_state(model, result, source) for source in torque_sources(model))
 
 
 def relative_speed(w_1: Any, w_2: Any) -> Any:
@@ -215,7 +215,7 @@ def torques_on_bodies(states: tuple[BearingState, ...]) -> dict[str, float]:
 def load_regime(model: Model, result: Any) -> tuple:
     """What must not change for the solution to stay affine in the loads: each element's
     driver and the sign of every tooth force that loads a bearing."""
-    signs = tuple((f > 0) - (f < 0) for source in loss_sources(model)
+    signs = tuple((f > 0) - (f < 0) for source in torque_sources(model)
                   for mesh, gear, radius, count in source.loaded_by
                   for f in [tooth_force(*_mesh_force(result, mesh, gear), radius, count)])
     return tuple(e.driver for e in result.elements), signs

@@ -139,11 +139,15 @@ def loss_block_places(model: Model) -> list[str]:
     >>> loss_block_places(load_model("models/rv40e.yaml"))[:2]
     ['links[0].friction', 'links[1].pins']
     """
-    found = [(link.index, f"{link.path}.{_block_name(link.blocks['friction'])}")
-             for link in model.links if link.type == "mesh" and "friction" in link.blocks]
+    found = []
     for source in loss_sources(model):
         where = len(model.links) if source.link is None else source.link
-        if source.kind == "bearing":
+        if source.applied == "element":
+            if source.friction is not None:
+                found.append((where, f"{source.path}.{_block_name(source.friction)}"))
+        elif source.applied == "machine":
+            continue
+        elif source.kind == "bearing":
             found += [(where, f"{source.path}.{key}") for key, law in
                       (("friction", source.friction), ("drag", source.drag)) if law is not None]
         else:

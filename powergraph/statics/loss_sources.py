@@ -1,27 +1,38 @@
-"""Loss sources: every torque loss the train's case carries besides its meshes.
+"""Loss sources: every loss of a train's case, described once per model.
 
-A loss source applies a torque ``M >= 0`` to two bodies, opposing their relative rotation
-``Δω``, and loses ``M·|Δω|``: a bearing's friction and drag, a component's drag against
-the housing, an open clutch's drag (an open shift element is a bearing carrying its drag).
-Each is described once, per model, by a :class:`LossSource`: its kind, its YAML path, its
-label, the two members, its instances, its laws, and the meshes whose tooth forces load
-it. Every evaluator takes the same list (:func:`loss_sources`): the single solve's
-bearing iteration (:func:`powergraph.statics.bearings.bearing_states`), the batched
-efficiency grid, the report's loss breakdown and the duty cycle's energy per element (both
-from the states the solve returns), and the methods that read plain efficiencies and so
-refuse such losses (:func:`places`).
+Each loss of a train is a :class:`LossSource`: its kind, its YAML path, its label, the two
+members it acts between, its instances, its laws, and how the solve applies it
+(``applied``):
+
+- ``"element"``: a mesh, or a coupling with an efficiency below 1, loses through its
+  element's factor in the torque balance (its basic efficiency, or a ``friction:``/``pins:``
+  law of the tooth load, in ``friction``);
+- ``"torque"``: a torque ``M >= 0`` between two bodies opposing their relative rotation
+  ``Δω``, losing ``M·|Δω|`` — a bearing's friction and drag, a component's drag against
+  the housing, an open clutch's drag (an open shift element is a bearing carrying its
+  drag), or any registered kind. Its laws have a vectorised ``torque(x)`` (N·m per
+  instance): ``friction.torque(radial load)`` and ``drag.torque(relative speed)``;
+  ``loaded_by`` names the meshes whose tooth forces load its friction;
+- ``"machine"``: an electric machine's loss, set by the bus balance.
+
+Every evaluator takes the same list (:func:`loss_sources`): the single solve's bearing
+iteration and the batched efficiency grid (the ``"torque"`` sources,
+:func:`torque_sources`), the report's loss breakdown, the flow graph, the duty cycle's
+energy per element and :func:`powergraph.testing.assert_conservation` (each source's loss
+in a result, :func:`losses`), and the methods that read plain efficiencies and so refuse
+load-dependent laws (:func:`powergraph.statics.friction.loss_block_places`).
 
 A new loss type is one module with a builder — ``builder(model) -> iterable of
 LossSource`` — and one line registering it (:data:`BUILDERS`, or :func:`registered` for a
-builder that lives outside the package, e.g. in a test). Its laws are objects with a
-vectorised ``torque(x)`` (N·m per instance, floats or arrays): ``friction.torque(radial
-load)`` and ``drag.torque(relative speed)``, as the bearing blocks' laws.
+builder that lives outside the package, e.g. in a test).
 
 Examples
 --------
 >>> from powergraph.model import load_model
->>> [(s.kind, s.path, s.node) for s in loss_sources(load_model("models/rv40e.yaml"))][:2]
-[('bearing', 'links[6]', 'bearing 3-7'), ('bearing', 'links[7]', 'bearing 1-0')]
+>>> sources = loss_sources(load_model("models/rv40e.yaml"))
+>>> [(s.kind, s.path, s.node) for s in sources][:4]  # doctest: +NORMALIZE_WHITESPACE
+[('mesh', 'links[0]', 'links[0] mesh 1-2'), ('mesh', 'links[1]', 'links[1] mesh 4-5'),
+ ('bearing', 'links[6]', 'bearing 3-7'), ('bearing', 'links[7]', 'bearing 1-0')]
 """
 from __future__ import annotations
 
@@ -38,10 +49,11 @@ class LossSource:
     """One loss source of a model (see the module docstring).
 
     ``between`` are the two members (component ids; the frame second for a drag against
-    the housing), ``link`` the link it stands for (None for a component's drag);
-    ``friction`` and ``drag`` its laws (None when absent); ``loaded_by`` the meshes whose
+    the housing), ``link`` the link it stands for (None for a component's drag or a
+    machine); ``friction`` and ``drag`` its laws (None when absent; a mesh's
+    ``friction`` is its load-dependent efficiency block); ``loaded_by`` the meshes whose
     tooth forces load its friction: ``(mesh link, gear, working pitch radius m, mesh
-    instances)``.
+    instances)``; ``applied`` how the solve applies it (see the module docstring).
     """
 
     kind: str
@@ -53,6 +65,43 @@ class LossSource:
     friction: Any = None
     drag: Any = None
     loaded_by: tuple[tuple[int, str, float, int], ...] = ()
+    applied: str = "torque"
+
+    @property
+    def label(self) -> str:
+        """Its name among a duty cycle's losses: ``links[2] mesh S-P``, ``bearing 3-7``,
+        ``machine MG1``."""
+        return f"machine {self.node}" if self.applied == "machine" else self.node
+
+    def loss(self, result: Any) -> float:
+        """This source's loss in ``result`` (a power-flow result of its model), W."""
+        if self.applied == "element":
+            return sum(e.loss for e in result.elements if e.link == self.link)
+        if self.applied == "machine":
+            return sum(m.loss for m in result.machines if m.name == self.node)
+        return sum(b.loss for b in result.bearings if b.node == self.node)
+
+
+def meshes(model: Model) -> Iterator[LossSource]:
+    """Each mesh, and each coupling with an efficiency below 1 (an element's factor)."""
+    for link in model.links:
+        if link.type == "mesh" or (link.type == "coupling" and link.efficiency < 1.0):
+            yield LossSource(link.type, link.path, element_label(model, link.index),
+                             link.index, link.between,
+                             max(model.components[c].count for c in link.between),
+                             friction=link.blocks.get("friction"), applied="element")
+
+
+def element_label(model: Model, link: int) -> str:
+    """``links[2] mesh S-P``: the label of a mesh's or coupling's loss.
+
+    >>> from powergraph.model import load_model
+    >>> element_label(load_model("models/rv40e.yaml"), 0)
+    'links[0] mesh 1-2'
+    """
+    lk = model.links[link]
+    a, b = (model.raw_id(c) for c in lk.between)
+    return f"links[{link}] {lk.type} {a}-{b}"
 
 
 def bearings(model: Model) -> Iterator[LossSource]:
@@ -89,8 +138,19 @@ def drags(model: Model) -> Iterator[LossSource]:
                              component.count, None, component.drag)
 
 
+def machines(model: Model) -> Iterator[LossSource]:
+    """Each electric machine (its loss set by the bus balance)."""
+    if not model.machines:
+        return
+    from powergraph.statics.machines import machine_name  # trains with machines
+
+    for port in model.machines:
+        yield LossSource("machine", port.path, machine_name(port, model), None,
+                         (port.component, model.frame), 1, applied="machine")
+
+
 #: The registered builders, in the order their sources are listed.
-BUILDERS: list[Callable[[Model], Iterable[LossSource]]] = [bearings, drags]
+BUILDERS: list[Callable[[Model], Iterable[LossSource]]] = [meshes, bearings, drags, machines]
 
 
 def loss_sources(model: Model) -> tuple[LossSource, ...]:
@@ -102,9 +162,27 @@ def loss_sources(model: Model) -> tuple[LossSource, ...]:
     return found
 
 
-def places(model: Model) -> list[str]:
-    """The YAML paths of ``model``'s loss sources (``links[3]``, ``components.x.drag``)."""
-    return [source.path for source in loss_sources(model)]
+def torque_sources(model: Model) -> tuple[LossSource, ...]:
+    """The sources applied as torques opposing a relative rotation (``applied ==
+    "torque"``): what the bearing iteration solves for."""
+    key = ("statics.torque_sources", tuple(BUILDERS))
+    found = model.derived.get(key)
+    if found is None:
+        found = model.derived[key] = tuple(s for s in loss_sources(model)
+                                           if s.applied == "torque")
+    return found
+
+
+def losses(result: Any) -> tuple[tuple[LossSource, float], ...]:
+    """Each loss source of ``result``'s model with its loss in ``result`` (W); together
+    they are the result's total loss.
+
+    >>> import powergraph as pg
+    >>> result = pg.solve(pg.load_model("models/rv40e.yaml"))
+    >>> abs(sum(w for _, w in losses(result)) - result.total_loss) < 1e-9 * result.total_loss
+    True
+    """
+    return tuple((source, source.loss(result)) for source in loss_sources(result.model))
 
 
 @contextmanager

@@ -53,13 +53,6 @@ def machine_dict(result: "PowerFlowResult") -> dict[str, Any]:
             "negative_split": negative_split(result)}
 
 
-def machine_losses(result: "PowerFlowResult") -> list[tuple[str, float]]:
-    """``(label, W)`` of each machine's loss, for the loss breakdown."""
-    raw = result.model.raw_id
-    return [(f"machine {m.name} (component {raw(m.component)})", m.loss)
-            for m in result.machines]
-
-
 def machine_lines(result: "PowerFlowResult") -> list[str]:
     """The text report's machine and bus section."""
     if not result.machines:

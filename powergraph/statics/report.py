@@ -10,8 +10,8 @@ import textwrap
 from typing import Any
 
 from powergraph.format import column, power_unit, ratio_text, table
-from powergraph.statics.machine_report import (boundary_powers, machine_dict, machine_lines,
-                                             machine_losses)
+from powergraph.statics.loss_sources import losses
+from powergraph.statics.machine_report import boundary_powers, machine_dict, machine_lines
 from powergraph.statics.verdicts import verdict_of
 from powergraph.units_si import RPM_PER_RAD_S
 
@@ -82,28 +82,29 @@ def _finite(value: float) -> float | None:
 
 
 def loss_sources(result: PowerFlowResult) -> list[tuple[str, float]]:
-    """Where the power goes: each mesh (a cycloid mesh split into its pins, output pins and
-    crank bearings), each bearing and drag, as ``(label, W)``; they sum to the total loss.
+    """Where the power goes: each loss source of the model
+    (:func:`powergraph.statics.loss_sources.losses`: meshes, a cycloid mesh split into its
+    pins, output pins and crank bearings, lossy couplings, bearings and drags, machines,
+    any registered kind) as ``(label, W)``; they sum to the total loss.
 
     A cycloid mesh's basic efficiency is the product of its parts' (docs/losses.md); its
     loss is shared among them in proportion to ``-ln η`` of each, which adds up exactly.
     """
     model = result.model
-    raw = model.raw_id
     out = []
-    for e in result.elements:
-        if e.kind != "mesh" and e.loss == 0.0:
-            continue
-        link = model.links[e.link]
-        label = (f"links[{e.link}] {e.kind} {raw(e.a)}-{raw(e.b)}"
-                 f" ({_names(model, (e.a, e.b), getattr(link, 'name', None))})")
-        block = (link.blocks or {}).get("friction")
-        out += _split(label, e.loss, getattr(block, "loss", None))
-    for b in result.bearings:
-        prefix = f"links[{b.link}] " if b.link is not None else ""
-        out.append((f"{prefix}{b.node} ({_names(model, b.between, None)})"
-                    + (" drag" if b.kind == "drag" and "drag" not in b.node else ""), b.loss))
-    return out + machine_losses(result)
+    for source, loss in losses(result):
+        if source.applied == "machine":
+            out.append((f"{source.label} (component {model.raw_id(source.between[0])})", loss))
+        elif source.applied == "element":
+            name = getattr(model.links[source.link], "name", None)
+            label = f"{source.node} ({_names(model, source.between, name)})"
+            out += _split(label, loss, getattr(source.friction, "loss", None))
+        else:
+            prefix = f"links[{source.link}] " if source.link is not None else ""
+            drag = " drag" if source.kind == "drag" and "drag" not in source.node else ""
+            out.append((f"{prefix}{source.node} ({_names(model, source.between, None)}){drag}",
+                        loss))
+    return out
 
 
 def _names(model, ids, name: str | None) -> str:

@@ -14,7 +14,7 @@ import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
 from powergraph.model.spec import Model
-from powergraph.statics.loss_sources import loss_sources
+from powergraph.statics.loss_sources import torque_sources
 from powergraph.model.validate import check_port_ranges
 from powergraph.statics.directions import (
     factors_of,
@@ -76,7 +76,7 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
 
         return solve_machines(model, speeds, solve)
     elements = elements_of(model)
-    if extra_torques is None and (model.has_load_dependent_losses or loss_sources(model)):
+    if extra_torques is None and (model.has_load_dependent_losses or torque_sources(model)):
         from powergraph.statics.friction import solve_with_friction
 
         # the passes change efficiencies and bearing torques, never the motion: the speeds

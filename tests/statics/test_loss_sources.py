@@ -12,6 +12,7 @@ output and the efficiency is 0.975.
 from __future__ import annotations
 
 import io
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -19,7 +20,8 @@ import pytest
 import powergraph as pg
 from powergraph.errors import MethodNotApplicableError
 from powergraph.model import load_model, model_from_dict
-from powergraph.statics.loss_sources import BUILDERS, LossSource, loss_sources, registered
+from powergraph.statics.loss_sources import (BUILDERS, LossSource, loss_sources, losses,
+                                             registered, torque_sources)
 from powergraph.testing import assert_conservation
 
 
@@ -51,12 +53,32 @@ def pair():
                   {"component": 2, "role": "output"}]})
 
 
-def test_builtin_sources_are_the_bearings_and_drags_in_file_order() -> None:
-    sources = loss_sources(load_model("models/rv40e.yaml"))
-    assert [(s.kind, s.path) for s in sources] == [
+def test_builtin_sources_are_meshes_then_bearings_and_drags_in_file_order() -> None:
+    model = load_model("models/rv40e.yaml")
+    sources = loss_sources(model)
+    meshes = [f"links[{link.index}]" for link in model.links if link.type == "mesh"]
+    assert [(s.kind, s.path) for s in sources] == [("mesh", path) for path in meshes] + [
         ("bearing", "links[6]"), ("bearing", "links[7]"), ("bearing", "links[8]")]
-    assert sources[0].loaded_by and not sources[1].loaded_by   # friction vs drag only
-    assert loss_sources(pair()) == ()
+    assert [s.path for s in torque_sources(model)] == ["links[6]", "links[7]", "links[8]"]
+    bearing = torque_sources(model)[0]
+    assert bearing.loaded_by and not torque_sources(model)[1].loaded_by  # friction vs drag
+    assert [(s.kind, s.applied) for s in loss_sources(pair())] == [("mesh", "element")]
+    assert torque_sources(pair()) == ()
+
+
+def test_every_source_has_its_loss_and_they_make_the_total() -> None:
+    """In every bundled model the losses of its sources add up to the result's total loss
+    (a loss the sources do not name would break the sum), and a machine's source reads
+    the machine's own loss."""
+    for path in sorted(Path("models").glob("*.yaml")):
+        model = load_model(path)
+        if model.modes:
+            continue
+        result = pg.solve(model)
+        found = losses(result)
+        assert sum(w for _, w in found) == pytest.approx(result.total_loss, rel=1e-9, abs=1e-9)
+        by_name = {s.node: w for s, w in found if s.applied == "machine"}
+        assert by_name == {m.name: m.loss for m in result.machines}
 
 
 def test_a_registered_loss_type_reaches_every_evaluator() -> None:
