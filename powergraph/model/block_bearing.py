@@ -49,27 +49,113 @@ class BearingFriction:
 
 
 @record
+class WetDrag:
+    """Laminar shear drag of an open wet clutch or brake (per instance):
+
+        T = faces · π · μ · |Δω| · (r_o⁴ − r_i⁴) / (2 h)
+
+    (Newtonian oil filling each gap of height ``h`` between annular faces ``r_i … r_o``,
+    Couette flow; lengths in m, ``mu`` the dynamic viscosity in Pa·s, bound from the
+    model's lubricant at its temperature: :meth:`at_oil`).
+
+    >>> wet = WetDrag(6, 0.06, 0.08, 0.2e-3, mu=0.0074)   # 8.5 cSt x 870 kg/m3
+    >>> round(wet.torque(100.0), 4)     # 6 pi 0.0074 100 (0.08^4 - 0.06^4) / (2 0.2e-3)
+    0.9764
+    """
+
+    faces: int
+    inner_radius: float
+    outer_radius: float
+    clearance: float
+    mu: float | None = None
+
+    takes_oil = True
+
+    def at_oil(self, oil: Any) -> "WetDrag":
+        """This drag with the dynamic viscosity of ``oil`` (a Lubricant) at its
+        temperature."""
+        return WetDrag(self.faces, self.inner_radius, self.outer_radius, self.clearance,
+                       oil.dynamic_viscosity())
+
+    def torque(self, relative_speed: Any) -> Any:
+        """Drag torque (N·m) at ``relative_speed`` (rad/s)."""
+        return (self.faces * math.pi * self.mu * abs(relative_speed)
+                * (self.outer_radius ** 4 - self.inner_radius ** 4) / (2.0 * self.clearance))
+
+
+@record
+class SealDrag:
+    """A lip seal on a shaft of ``diameter`` d (mm): it loses ``P = 7.69e-6 · d² · n`` W at
+    ``n`` rpm (ISO/TR 14179-2), a constant torque ``P/ω = 7.69e-6 · d² · 30/π`` N·m.
+
+    >>> round(SealDrag(30.0).torque(1000 * math.pi / 30) * 1000 * math.pi / 30, 6)  # W
+    6.921
+    """
+
+    diameter: float
+
+    #: ISO/TR 14179-2's seal coefficient: W per (mm² · rpm).
+    COEFFICIENT = 7.69e-6
+
+    def torque(self, relative_speed: Any) -> Any:
+        """The seal's torque (N·m), the same at any relative speed (0 at rest is the
+        bearing law's)."""
+        return self.COEFFICIENT * self.diameter ** 2 * RPM_PER_RAD_S + 0.0 * abs(relative_speed)
+
+
+@record
 class Drag:
-    """No-load drag ``M0 = a + b * |n|`` (N·m; ``n`` the relative speed in rpm)."""
+    """No-load drag ``M0 = a + b * |n|`` (N·m; ``n`` the relative speed in rpm), plus an
+    open wet clutch's laminar drag (``wet``, :class:`WetDrag`) when given."""
 
     a: float
     b: float = 0.0
+    wet: WetDrag | None = None
 
-    def torque(self, relative_speed: float) -> float:
+    @property
+    def takes_oil(self) -> bool:
+        return self.wet is not None
+
+    def at_oil(self, oil: Any) -> "Drag":
+        """This drag with its wet part at ``oil``'s viscosity."""
+        return Drag(self.a, self.b, None if self.wet is None else self.wet.at_oil(oil))
+
+    def torque(self, relative_speed: Any) -> Any:
         """Drag torque (N·m) of one instance at ``relative_speed`` (rad/s)."""
-        return self.a + self.b * abs(relative_speed) * RPM_PER_RAD_S
+        torque = self.a + self.b * abs(relative_speed) * RPM_PER_RAD_S
+        return torque if self.wet is None else torque + self.wet.torque(relative_speed)
 
 
 def parse_drag(raw: Mapping, path: str) -> Drag:
     """Read a ``drag:`` block (already checked against the schema)."""
+    wet = _wet(raw["wet"], f"{path}.wet") if "wet" in raw else None
     if "no_load_torque" in raw:
         both = [k for k in ("a", "b") if k in raw]
         if both:
             raise ModelError("give no_load_torque or a/b, not both", f"{path}.{both[0]}")
-        return Drag(_torque(raw["no_load_torque"], f"{path}.no_load_torque"))
+        return Drag(_torque(raw["no_load_torque"], f"{path}.no_load_torque"), wet=wet)
     if not raw:
-        raise ModelError("give no_load_torque, or a and/or b", path)
-    return Drag(_torque(raw.get("a", 0.0), f"{path}.a"), _torque(raw.get("b", 0.0), f"{path}.b"))
+        raise ModelError("give no_load_torque, or a and/or b, or wet", path)
+    return Drag(_torque(raw.get("a", 0.0), f"{path}.a"), _torque(raw.get("b", 0.0), f"{path}.b"),
+                wet)
+
+
+def _wet(raw: Mapping, path: str) -> WetDrag:
+    """A ``wet:`` drag (lengths to m); the viscosity is bound later, from the lubricant."""
+    inner, outer, gap = (parse_quantity(raw[k], "length", f"{path}.{k}") / 1000.0
+                         for k in ("inner_radius", "outer_radius", "clearance"))
+    if not outer > inner:
+        raise ModelError(f"outer_radius ({outer * 1000:g} mm) must be larger than "
+                         f"inner_radius ({inner * 1000:g} mm)", f"{path}.outer_radius")
+    return WetDrag(int(raw["faces"]), inner, outer, gap)
+
+
+def parse_seal(raw: Mapping, path: str) -> dict[str, Any]:
+    """The blocks of a ``seal`` link: its drag (:class:`SealDrag`)."""
+    diameter = parse_quantity(raw["diameter"], "length", f"{path}.diameter")
+    if not diameter > 0.0:
+        raise ModelError(f"must be > 0 mm, got {diameter:g}", f"{path}.diameter")
+    return {"drag": SealDrag(diameter)}
 
 
 def parse_bearing_blocks(raw: Mapping, path: str) -> dict[str, Any]:

@@ -4,6 +4,7 @@ alone (no friction) is read by :func:`parse_mesh_geometry`: the feasibility chec
 (working centre distance, undercut; docs/feasibility.md)."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any, Mapping
 
@@ -33,6 +34,13 @@ class MeshFriction:
     viscosity: float | None = None
     roughness: float | None = None
     lubricant_factor: float = 1.0
+    #: True when the viscosity is the model's lubricant's at its temperature (bound by
+    #: :meth:`at_oil`), not given in the block.
+    takes_oil: bool = False
+
+    def at_oil(self, oil: Any) -> "MeshFriction":
+        """This law with the dynamic viscosity (mPa·s) of ``oil`` at its temperature."""
+        return dataclasses.replace(self, viscosity=oil.dynamic_viscosity() * 1000.0)
 
     @property
     def load_dependent(self) -> bool:
@@ -81,7 +89,9 @@ def parse_mesh_friction(link: int, friction: Mapping, geometry: Mapping | None,
     if face_width is None:
         raise ModelError("the iso14179 model needs geometry.face_width", f"{path}.geometry")
     return MeshFriction(link, gears[0][0], g, face_width, "iso14179",
-                        viscosity=_viscosity(friction["viscosity"], f"{path}.friction.viscosity"),
+                        viscosity=(_viscosity(friction["viscosity"], f"{path}.friction.viscosity")
+                                   if "viscosity" in friction else None),
+                        takes_oil="viscosity" not in friction,
                         roughness=_roughness(friction["roughness"], f"{path}.friction.roughness"),
                         lubricant_factor=float(friction.get("lubricant_factor", 1.0)))
 

@@ -31,6 +31,7 @@ from __future__ import annotations
 from typing import Any
 
 from powergraph.model.schema_losses import (_BEARING_FRICTION, _CRANK_BEARING, _DRAG,
+                                            _LUBRICANT, _THERMAL,
                                             _FRICTION, _MESH_GEOMETRY, _OUTPUT_PINS, _PINS)
 from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_SPEED,
                                            MAX_TEETH, MAX_TORQUE, MIN_RATIO, _EFFICIENCY,
@@ -227,10 +228,12 @@ _SCHEMA: dict[str, Any] = {
                        "additionalProperties": _ref("component")},
         "links": {"type": "array", "title": "links", "items": _ref("link"),
                   "description": "The edges: meshes, fixed joints, couplings, bearings, "
-                                 "clutches, brakes, freewheels."},
+                                 "seals, clutches, brakes, freewheels."},
         "ports": {"type": "array", "title": "ports", "items": _ref("port"),
                   "description": "At least one input and one output."},
         "tolerances": _TOLERANCES,
+        "lubricant": _LUBRICANT,
+        "thermal": _THERMAL,
         "modes": MODES,
         "buses": {"type": "object", "title": "buses",
                   "description": "{name: bus}: electrical buses joining machine ports "
@@ -268,6 +271,12 @@ _SCHEMA: dict[str, Any] = {
                            "carrier]); sets no speed; passes no power unless it has "
                            "friction or drag (docs/losses.md).",
                            {"friction": _ref("bearingFriction"), "drag": _ref("drag")}),
+                     {**_link("seal", "A lip seal between two members: it loses "
+                              "7.69e-6·d²·n W at n rpm of relative speed, d in mm "
+                              "(ISO/TR 14179-2; docs/losses.md).",
+                              {"diameter": _length("diameter", "Shaft diameter at the "
+                                                               "seal's lip.")}),
+                      "required": ["type", "between", "diameter"]},
                      *SHIFT_LINKS,
                  ]},
         "backlash": _BACKLASH,

@@ -28,7 +28,9 @@ _FRICTION = {
                        "description": "iso14179: the coefficient of ISO/TR 14179-2."},
              "viscosity": {"title": "viscosity",
                            "description": "Dynamic viscosity of the oil at its working "
-                                          "temperature: mPa*s, or a string with units.",
+                                          "temperature: mPa*s, or a string with units. "
+                                          "Default: the model's lubricant at its "
+                                          "temperature.",
                            "anyOf": [{"type": "number", "exclusiveMinimum": 0,
                                       "maximum": 1e6},
                                      {"type": "string", "pattern": _UNIT_TEXT}]},
@@ -41,7 +43,7 @@ _FRICTION = {
              "lubricant_factor": {"type": "number", "exclusiveMinimum": 0, "maximum": 10,
                                   "default": 1, "title": "lubricant_factor",
                                   "description": "X_L: 1 for mineral oil."}},
-         "additionalProperties": False, "required": ["model", "viscosity", "roughness"]},
+         "additionalProperties": False, "required": ["model", "roughness"]},
     ],
 }
 
@@ -146,8 +148,64 @@ _DRAG = {
                                     **_TORQUE_0),
         "a": _quantity("torque", "a", "Constant part of the drag. Default 0.", **_TORQUE_0),
         "b": _quantity("torque", "b", "Drag per rpm of relative speed. Default 0.",
-                       **_TORQUE_0)},
+                       **_TORQUE_0),
+        "wet": {"type": "object", "title": "wet clutch drag",
+                "description": "Laminar shear of the oil in each gap of an open wet clutch "
+                               "or brake, T = faces·π·μ·|Δω|·(r_o⁴ − r_i⁴)/(2h), μ from "
+                               "the model's lubricant at its temperature (docs/losses.md).",
+                "properties": {
+                    "faces": {"type": "integer", "minimum": 1, "maximum": 100,
+                              "title": "faces", "description": "Number of oil gaps "
+                                                               "(friction faces)."},
+                    "inner_radius": _length("inner_radius", "Inner radius r_i of the "
+                                                            "friction faces."),
+                    "outer_radius": _length("outer_radius", "Outer radius r_o of the "
+                                                            "friction faces."),
+                    "clearance": _length("clearance", "Oil gap h per face.")},
+                "additionalProperties": False,
+                "required": ["faces", "inner_radius", "outer_radius", "clearance"]}},
     "additionalProperties": False, "minProperties": 1,
+}
+_TEMPERATURE = {"title": "temperature",
+                "description": "A temperature: a number in K, or a string in K, degC or degF.",
+                "anyOf": [{"type": "number", "exclusiveMinimum": 0},
+                          {"type": "string", "maxLength": 64}],
+                "examples": ["80 degC", 353.15]}
+_LUBRICANT = {
+    "type": "object", "title": "lubricant",
+    "description": "The oil: its viscosity at 40 and 100 degC (or an ISO VG grade), density "
+                   "and temperature; every viscous law takes its viscosity from it "
+                   "(docs/losses.md).",
+    "properties": {
+        "grade": {"type": ["string", "integer"], "title": "grade",
+                  "description": "ISO VG grade (ISO VG 32 ... 680): viscosities and density "
+                                 "of a typical mineral gear oil (docs/losses.md)."},
+        "viscosity_40": _quantity("kinematic viscosity", "viscosity_40",
+                                  "Kinematic viscosity at 40 degC.", exclusiveMinimum=0),
+        "viscosity_100": _quantity("kinematic viscosity", "viscosity_100",
+                                   "Kinematic viscosity at 100 degC.", exclusiveMinimum=0),
+        "density": _quantity("density", "density", "Density (taken as constant).",
+                             exclusiveMinimum=0),
+        "temperature": {**_TEMPERATURE, "description": "The oil temperature the model runs "
+                        "at, unless a thermal: block sets it. Default 40 degC."},
+        "max_temperature": {**_TEMPERATURE, "description": "The oil's limit. Default "
+                            "150 degC."}},
+    "additionalProperties": False,
+}
+_THERMAL = {
+    "type": "object", "title": "thermal",
+    "description": "Heat balance: the oil temperature at which every loss equals "
+                   "h·A·(T − T_ambient) plus a cooler's power (docs/losses.md).",
+    "properties": {
+        "ambient": {**_TEMPERATURE, "description": "Ambient temperature."},
+        "heat_transfer": _quantity("heat transfer coefficient", "heat_transfer",
+                                   "Heat transfer coefficient h of the housing.",
+                                   exclusiveMinimum=0),
+        "area": _quantity("area", "area", "The housing's heat-giving area A.",
+                          exclusiveMinimum=0),
+        "cooler": _quantity("power", "cooler", "Power a cooler takes away. Default 0.",
+                            minimum=0)},
+    "additionalProperties": False, "required": ["ambient", "heat_transfer", "area"],
 }
 _BEARING_FRICTION = {
     "type": "object", "title": "bearing friction",

@@ -19,9 +19,11 @@ MIN_RATIO, MAX_RATIO = 1e-6, 1e6
 #: Smallest efficiency of a machine (a number or a map's value), as ``--mesh-efficiency``'s:
 #: below it the power a machine draws, P/η, leaves the range the solve can balance.
 MIN_MACHINE_EFFICIENCY = 1e-6
-LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "clutch", "brake", "freewheel")
+LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "seal", "clutch", "brake", "freewheel")
 _UNIT_TEXT = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
-_SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm"}
+_SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm",
+       "kinematic viscosity": "m²/s", "density": "kg/m³", "area": "m²",
+       "heat transfer coefficient": "W/(m²·K)", "temperature": "K"}
 
 
 def _ref(name: str, **annotations: Any) -> dict:
@@ -50,7 +52,10 @@ def _quantity(kind: str, title: str, description: str, **bounds: Any) -> dict:
 
 
 _EXAMPLES = {"speed": ["1500 rpm", 157.08], "power": ["2.27 kW", 1000],
-             "torque": ["120 N*m", 12.5], "length": ["12 mm", 1.5]}
+             "torque": ["120 N*m", 12.5], "length": ["12 mm", 1.5],
+             "kinematic viscosity": ["32 cSt"], "density": ["870 kg/m^3"],
+             "area": ["0.3 m^2"], "heat transfer coefficient": ["18 W/(m^2*K)"],
+             "temperature": ["80 degC", 353.15]}
 
 
 def _text(title: str, description: str) -> dict:

@@ -53,6 +53,10 @@ class Model:
     resolved: bool = field(default=False, compare=False)
     #: ``{name: Bus}`` electrical buses of the machine ports; empty without machines.
     buses: Mapping[str, "Bus"] = field(default_factory=lambda: MappingProxyType({}))
+    #: The oil (powergraph.model.lubricant.Lubricant), None without a ``lubricant:`` block.
+    lubricant: Any = None
+    #: The heat balance (powergraph.model.lubricant.Thermal), None without ``thermal:``.
+    thermal: Any = None
 
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
@@ -79,9 +83,10 @@ class Model:
 
     @cached_property
     def has_bearing_losses(self) -> bool:
-        """True when a bearing has ``friction``/``drag`` or a component has ``drag``."""
+        """True when a bearing has ``friction``/``drag``, a component has ``drag``, or a
+        seal joins two members."""
         return any(c.drag is not None for c in self.components.values()) or any(
-            link.type == "bearing" and link.blocks for link in self.links)
+            link.type in ("bearing", "seal") and link.blocks for link in self.links)
 
     @cached_property
     def has_load_dependent_losses(self) -> bool:

@@ -24,7 +24,7 @@ from powergraph.records import record
 if TYPE_CHECKING:  # pragma: no cover
     from powergraph.model.efficiency_table import EfficiencyTable
 
-LINK_TYPES = ("mesh", "fixed", "coupling", "bearing")
+LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "seal")
 #: Link types that are shift elements (docs/modes.md): resolved to ``fixed`` (engaged) or
 #: ``bearing`` (open: no constraint, only its drag) in ``Model.links``.
 SHIFT_TYPES = ("clutch", "brake", "freewheel")

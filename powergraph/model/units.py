@@ -40,7 +40,9 @@ from powergraph.model.yaml_loader import brief
 from powergraph.units_si import RAD_S_PER_RPM
 
 #: SI unit of each kind of quantity a model may carry.
-SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm"}
+SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm",
+            "kinematic viscosity": "m^2/s", "density": "kg/m^3", "area": "m^2",
+            "heat transfer coefficient": "W/(m^2*K)"}
 #: Longest quantity string read, and longest unit name in it.
 MAX_TEXT, MAX_NAME = 64, 24
 #: Largest power of a unit (``m^4``) and deepest parentheses in a quantity string.
@@ -63,7 +65,17 @@ _TABLES = {
     "length": ((("mm",), 1.0), (("m",), 1e3), (("cm",), 10.0), (("um", "µm"), 1e-3),
                (("Mm",), 1e9)),
     "dynamic viscosity": ((("mPa*s", "cP"), 1.0), (("Pa*s",), 1e3), (("MPa*s",), 1e9)),
+    "kinematic viscosity": ((("cSt", "mm^2/s"), 1e-6), (("m^2/s",), 1.0),
+                            (("St", "cm^2/s"), 1e-4)),
+    "density": ((("kg/m^3",), 1.0), (("g/cm^3", "kg/L", "g/mL"), 1e3), (("g/L",), 1.0)),
+    "area": ((("m^2",), 1.0), (("mm^2",), 1e-6), (("cm^2",), 1e-4), (("dm^2",), 1e-2)),
+    "heat transfer coefficient": ((("W/(m^2*K)", "W/m^2/K"), 1.0),
+                                  (("kW/(m^2*K)",), 1e3)),
 }
+#: Temperature units (``80 degC``): name -> (factor, offset) to kelvin.
+TEMPERATURE_UNITS = {"K": (1.0, 0.0), "kelvin": (1.0, 0.0), "degC": (1.0, 273.15),
+                     "°C": (1.0, 273.15), "celsius": (1.0, 273.15),
+                     "degF": (5 / 9, 273.15 - 32 * 5 / 9), "°F": (5 / 9, 273.15 - 32 * 5 / 9)}
 #: The unit the factors of each table lead to.
 TABLE_UNITS = {**SI_UNITS, "dynamic viscosity": "mPa*s"}
 _NUMBER_UNIT = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?:\s+|(?=\D)|$)"
@@ -125,6 +137,34 @@ def parse_quantity(value: object, kind: str, path: str) -> float:
     if not math.isfinite(result):
         raise ModelError(f"{kind} must be finite, got {brief(value)}", path)
     return result
+
+
+def parse_temperature(value: object, path: str) -> float:
+    """A temperature in kelvin: a number (K) or a string in K, degC (°C) or degF (°F).
+
+    >>> parse_temperature("80 degC", "x"), parse_temperature(353.15, "x")
+    (353.15, 353.15)
+    >>> parse_temperature("80 C", "lubricant.temperature")
+    Traceback (most recent call last):
+    ...
+    powergraph.errors.ModelError: lubricant.temperature: cannot read '80 C' as a temperature: write it in K, degC (°C) or degF (°F)
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ModelError(f"expected a temperature, got {brief(value)}", path)
+    if isinstance(value, str):
+        if len(value) > MAX_TEXT:
+            raise ModelError(f"cannot read {brief(value)} as a temperature", path)
+        number, unit = _split(value, "temperature", path)
+        if unit.strip() not in TEMPERATURE_UNITS:
+            raise ModelError(f"cannot read {value!r} as a temperature: write it in K, degC "
+                             "(°C) or degF (°F)", path)
+        factor, offset = TEMPERATURE_UNITS[unit.strip()]
+        value = number * factor + offset
+    kelvin = float(value)
+    if not (math.isfinite(kelvin) and kelvin > 0.0):
+        raise ModelError(f"a temperature must be above absolute zero, got {brief(value)}",
+                         path)
+    return kelvin
 
 
 def parse_number(value: object, path: str, minimum: float | None = None,

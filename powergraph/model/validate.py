@@ -101,7 +101,8 @@ def _model(data: Any, source: str | None) -> Model:
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
                   shift_elements=shift_elements, modes=modes,
                   mode=next(iter(modes), None), warnings=tuple(caveats),
-                  buses=buses_of(data.get("buses"), ports))
+                  buses=buses_of(data.get("buses"), ports), **_oil(data))
+    model = _bind_oil(model)
     if modes:
         model = _default_state(model)
     check_topology(model)
@@ -118,6 +119,28 @@ def _model(data: Any, source: str | None) -> Model:
         model = dataclasses.replace(model, tolerances=validate_tolerances(data["tolerances"],
                                                                          model))
     return model
+
+
+def _oil(data: Mapping) -> dict[str, Any]:
+    """The ``lubricant`` and ``thermal`` blocks, read (a heat balance needs an oil)."""
+    if "lubricant" not in data and "thermal" not in data:
+        return {}
+    from powergraph.model.lubricant import parse_lubricant, parse_thermal
+
+    if "thermal" in data and "lubricant" not in data:
+        raise ModelError("a heat balance sets the oil's temperature: give the model a "
+                         "lubricant: block too", "thermal")
+    out = {"lubricant": parse_lubricant(data["lubricant"], "lubricant")}
+    if "thermal" in data:
+        out["thermal"] = parse_thermal(data["thermal"], "thermal")
+    return out
+
+
+def _bind_oil(model: Model) -> Model:
+    """Every viscous law bound to the oil at its temperature (or refused without one)."""
+    from powergraph.model.lubricant import bind_oil
+
+    return bind_oil(model)
 
 
 def _default_state(model: Model) -> Model:
@@ -241,6 +264,10 @@ def _link(raw: Mapping, index: int, components: Mapping[str, Component], frame: 
         from powergraph.model.block_bearing import parse_bearing_blocks
 
         fields["blocks"] = MappingProxyType(parse_bearing_blocks(raw, path))
+    elif kind == "seal":
+        from powergraph.model.block_bearing import parse_seal
+
+        fields["blocks"] = MappingProxyType(parse_seal(raw, path))
     return Link(index=index, type=kind, between=(a, b), raw_between=tuple(between),
                 name=optional_name(raw.get("name"), f"links[{index}].name", "link name"),
                 **fields)

@@ -131,8 +131,8 @@ def _torque_change(old: Mapping[str, float], new: Mapping[str, float], result: A
 
 def loss_block_places(model: Model) -> list[str]:
     """Where ``model`` has losses that are not a constant efficiency: a mesh's ``friction:``
-    or ``pins:``, a bearing's ``friction:``/``drag:``, a component's ``drag:``, as YAML
-    paths, in file order of links then components. Methods that read plain efficiencies
+    or ``pins:``, a bearing's ``friction:``/``drag:``, a seal, a component's ``drag:``, a
+    heat balance (``thermal``), as YAML paths, in file order of links then components. Methods that read plain efficiencies
     refuse such a model rather than let these losses vanish.
 
     >>> from powergraph.model import load_model
@@ -152,6 +152,8 @@ def loss_block_places(model: Model) -> list[str]:
                       (("friction", source.friction), ("drag", source.drag)) if law is not None]
         else:
             found.append((where, source.path))
+    if model.thermal is not None:          # the oil temperature: a heat balance per point
+        found.append((len(model.links) + 1, "thermal"))
     return [path for _, path in sorted(found, key=lambda item: item[0])]
 
 

@@ -104,16 +104,20 @@ def element_label(model: Model, link: int) -> str:
     return f"links[{link}] {lk.type} {a}-{b}"
 
 
+#: The link types that carry torque loss blocks.
+TORQUE_LINKS = ("bearing", "seal")
+
+
 def bearings(model: Model) -> Iterator[LossSource]:
     """Each bearing link with a ``friction:`` or ``drag:`` block (an open clutch or brake
-    with its drag included)."""
-    if not any(link.type == "bearing" and link.blocks for link in model.links):
+    with its drag included), and each seal (kind ``seal``)."""
+    if not any(link.type in TORQUE_LINKS and link.blocks for link in model.links):
         return
     from powergraph.model.block_bearing import gear_radius, load_meshes  # trains with them
 
     names: set[str] = set()
     for link in model.links:
-        if link.type != "bearing" or not link.blocks:
+        if link.type not in TORQUE_LINKS or not link.blocks:
             continue
         carried, carrying = link.between
         friction = link.blocks.get("friction")
@@ -122,9 +126,10 @@ def bearings(model: Model) -> Iterator[LossSource]:
              max(model.components[c].count for c in model.links[mesh].between))
             for mesh, gear in (load_meshes(model, carried) if friction is not None else ()))
         # unique among the bearings (ids may contain "-"; two bearings may join a pair)
-        node = unique_name(f"bearing {model.raw_id(carried)}-{model.raw_id(carrying)}", names)
+        node = unique_name(f"{link.type} {model.raw_id(carried)}-{model.raw_id(carrying)}",
+                           names)
         names.add(node)
-        yield LossSource("bearing", link.path, node, link.index, (carried, carrying),
+        yield LossSource(link.type, link.path, node, link.index, (carried, carrying),
                          max(model.components[c].count for c in link.between), friction,
                          link.blocks.get("drag"), loaded)
 

@@ -59,6 +59,7 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "passes": result.passes,
         "load_sharing_assumed": result.load_sharing_assumed,
         **_friction_dict(result),
+        **_oil_dict(result),
         **machine_dict(result),
         "lock": result.lock.to_dict() if result.lock is not None else None,
         "directions": result.search.to_dict() if result.search is not None else None,
@@ -75,6 +76,32 @@ def _friction_dict(result: PowerFlowResult) -> dict[str, Any]:
     if out:
         out["friction_passes"] = result.friction_passes
     return out
+
+
+def _oil_dict(result: PowerFlowResult) -> dict[str, Any]:
+    """``lubricant``, ``thermal`` and ``no_load_torque``, where they apply."""
+    out: dict[str, Any] = {}
+    if result.model.lubricant is not None:
+        out["lubricant"] = result.model.lubricant.to_dict()
+    if result.thermal is not None:
+        out["thermal"] = result.thermal.to_dict()
+    torque = no_load_torque(result)
+    if torque is not None:
+        out["no_load_torque"] = torque
+    return out
+
+
+def no_load_torque(result: PowerFlowResult) -> float | None:
+    """The input torque (N·m) that keeps the train turning when nothing is taken at the
+    outputs (power enters at its one input and none leaves at the outputs): a catalogue's
+    no-load running torque; None otherwise."""
+    model = result.model
+    if len(model.inputs) != 1 or result.machines or not result.input_power > 0.0:
+        return None
+    if any(abs(p.power) > 1e-12 * result.input_power for p in result.ports
+           if p.role == "output"):
+        return None
+    return result.torques[model.inputs[0].component]
 
 
 def _finite(value: float) -> float | None:
@@ -239,7 +266,26 @@ def _summary_lines(result: PowerFlowResult) -> list[str]:
                                           "declared input)"])
     if result.circulating_power > 0:
         rows.append(["circulating power", _power(result.circulating_power)])
-    return table(rows, set(), indent="")
+    return table(rows + _oil_rows(result), set(), indent="")
+
+
+def _oil_rows(result: PowerFlowResult) -> list[list[str]]:
+    """The oil's temperature and viscosity, the heat balance, the no-load torque."""
+    rows = []
+    oil = result.model.lubricant
+    if oil is not None:
+        how = {None: "given", "ok": "from the heat balance"}.get(
+            None if result.thermal is None else result.thermal.verdict,
+            None if result.thermal is None else result.thermal.verdict)
+        rows.append(["oil", f"{oil.temperature - 273.15:.1f} degC ({how}), "
+                            f"{oil.viscosity() * 1e6:.4g} cSt, {oil.density:g} kg/m^3"])
+    if result.thermal is not None:
+        rows.append(["heat given off", f"{_power(result.thermal.heat_dissipated)} "
+                                       f"(ambient {result.thermal.ambient - 273.15:.1f} degC)"])
+    torque = no_load_torque(result)
+    if torque is not None:
+        rows.append(["no-load running torque", f"{torque:.6g} N·m at the input"])
+    return rows
 
 
 def _ports_table(result: PowerFlowResult) -> list[str]:

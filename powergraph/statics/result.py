@@ -120,6 +120,9 @@ class PowerFlowResult:
     #: ``buses:`` (powergraph.statics.machines); their losses are in ``total_loss``.
     machines: tuple = ()
     buses: Mapping[str, Any] = field(default_factory=dict)
+    #: The heat balance's state (ThermalState, powergraph.statics.thermal) of a model
+    #: with ``thermal:``: the oil temperature the result was solved at.
+    thermal: Any = None
 
     @property
     def name(self) -> str:
@@ -185,11 +188,14 @@ class PowerFlowResult:
         """The model's caveats, then the result's own (ports whose power runs against
         their declared role, an output torque that drives the train, no power passing, a
         machine outside its efficiency map)."""
+        own = result_caveats(self)
+        if self.thermal is not None:
+            own += self.thermal.caveats()
         if self.machines:
             from powergraph.statics.machines import machine_caveats
 
-            return tuple(self.model.warnings) + result_caveats(self) + machine_caveats(self)
-        return tuple(self.model.warnings) + result_caveats(self)
+            return tuple(self.model.warnings) + own + machine_caveats(self)
+        return tuple(self.model.warnings) + own
 
     @property
     def speeds(self) -> dict[str, float]:

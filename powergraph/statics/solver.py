@@ -71,6 +71,10 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     """
     if extra_torques is None:
         check_port_ranges(model, speeds)
+    if model.thermal is not None and extra_torques is None:
+        from powergraph.statics.thermal import solve_thermal
+
+        return solve_thermal(model, speeds, solve)
     if model.buses and extra_torques is None:
         from powergraph.statics.machines import solve_machines
 

@@ -1,0 +1,108 @@
+"""The oil temperature from a heat balance (the model's ``thermal:`` block; docs/losses.md).
+
+The losses heat the oil and the housing gives the heat off: in the steady state
+
+    total loss(T) = h · A · (T − T_ambient) + P_cooler,
+
+where the loss depends on the temperature through the oil's viscosity (open wet clutches'
+drag, the ISO/TR 14179-2 mesh friction, any law that takes the oil). The temperature is the
+root of that balance between the ambient and the oil's limit, found by Brent's method
+(:func:`scipy.optimize.brentq`) on whole solves at each trial temperature
+(:func:`powergraph.model.lubricant.at_temperature`), so the answer is the solve's own at
+the temperature found: the root is bracketed to 1e-12 K, so the balance closes to the
+loss's own round-off times h·A.
+
+Verdicts (:attr:`ThermalState.verdict`): ``ok``; ``at ambient`` when the cooler takes
+away at least the losses at ambient (the oil does not warm up: the answer is at ambient);
+``over the oil's limit`` when the losses at the oil's ``max_temperature`` still exceed what
+the housing gives off there: no steady state below the limit, the answer shown is at the
+limit, with a warning.
+
+Examples
+--------
+>>> import powergraph as pg
+>>> from powergraph.model import model_from_dict
+>>> train = model_from_dict({"name": "sealed pair",
+...     "lubricant": {"grade": "ISO VG 68", "temperature": "40 degC"},
+...     "thermal": {"ambient": "20 degC", "heat_transfer": 10, "area": 0.1},
+...     "components": {0: {"role": "frame"}, 1: {"teeth": 20}, 2: {"teeth": 40}},
+...     "links": [{"type": "mesh", "between": [1, 2], "efficiency": 0.98}],
+...     "ports": [{"component": 1, "role": "input", "speed": 100, "power": 100},
+...               {"component": 2, "role": "output"}]})
+>>> state = pg.solve(train).thermal        # 2 W lost = 10 * 0.1 * (T - 293.15)
+>>> round(state.temperature - 273.15, 6), round(state.heat_dissipated, 9), state.verdict
+(22.0, 2.0, 'ok')
+"""
+from __future__ import annotations
+
+import dataclasses
+from typing import Any, Callable, Mapping
+
+from powergraph.errors import Caveat
+from powergraph.model.lubricant import ZERO_C, at_temperature
+from powergraph.model.spec import Model
+from powergraph.records import record
+
+#: How closely the root is bracketed (K).
+XTOL = 1e-12
+VERDICTS = ("ok", "at ambient", "over the oil's limit")
+
+
+@record
+class ThermalState:
+    """The settled heat balance: the oil ``temperature`` (K), the ``heat_dissipated`` there
+    (W: the housing's plus the cooler's, equal to the total loss when ``verdict`` is
+    ``ok``), the ``ambient`` (K) and the ``verdict`` (:data:`VERDICTS`)."""
+
+    temperature: float
+    heat_dissipated: float
+    ambient: float
+    verdict: str
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"temperature": self.temperature, "heat_dissipated": self.heat_dissipated,
+                "ambient": self.ambient, "verdict": self.verdict}
+
+    def caveats(self) -> tuple[Caveat, ...]:
+        """A warning unless the balance settled between the ambient and the limit."""
+        if self.verdict == "over the oil's limit":
+            return (Caveat(f"the losses still exceed the heat given off at the oil's limit "
+                           f"({self.temperature - ZERO_C:g} degC): no steady temperature "
+                           "below it; the answer shown is at the limit (add area, a cooler, "
+                           "or a better-cooled housing)", "thermal", code="overheats"),)
+        if self.verdict == "at ambient":
+            return (Caveat("the cooler takes away at least the losses at ambient: the oil "
+                           "stays at the ambient temperature", "thermal.cooler",
+                           code="cooler-exceeds-losses"),)
+        return ()
+
+
+def solve_thermal(model: Model, speeds: Mapping[str, float] | None,
+                  solve: Callable) -> Any:
+    """``solve(model, speeds)`` at the oil temperature of ``model.thermal``'s balance;
+    the result carries the :class:`ThermalState` in ``thermal``."""
+    from scipy.optimize import brentq
+
+    balance, oil = model.thermal, model.lubricant
+    plain = dataclasses.replace(model, thermal=None)
+    results: dict[float, Any] = {}
+
+    def at(temperature: float) -> Any:
+        if temperature not in results:
+            results[temperature] = solve(at_temperature(plain, temperature), speeds)
+        return results[temperature]
+
+    def residual(temperature: float) -> float:
+        return at(temperature).total_loss - balance.heat(temperature)
+
+    low, high = balance.ambient, max(oil.max_temperature, balance.ambient)
+    if residual(low) <= 0.0:
+        temperature, verdict = low, "at ambient"
+    elif residual(high) > 0.0:
+        temperature, verdict = high, "over the oil's limit"
+    else:
+        temperature, verdict = brentq(residual, low, high, xtol=XTOL), "ok"
+    result = at(temperature)
+    heat = result.total_loss if verdict == "ok" else balance.heat(temperature)
+    return dataclasses.replace(result, thermal=ThermalState(
+        float(temperature), float(heat), balance.ambient, verdict))
