@@ -8,7 +8,10 @@ directory), the two alternating so that a busy machine slows both alike. Each tr
 model files are used; the files are named explicitly (the constant-efficiency RV-40E is
 ``models/rv40e_wang2021.yaml`` where it exists, else ``models/rv40e.yaml`` when that file
 has no friction law; the friction RV is ``models/rv40e_friction.yaml``, else
-``models/rv40e.yaml`` when that one has).
+``models/rv40e.yaml`` when that one has). A model with a heat balance (``thermal:``) is
+solved at its lubricant's own temperature, the work the reference commit does; the same
+solve with its heat balance (a whole solve per step of the balance) is reported on its own
+line, ``heat_balance``, against the fixed-temperature solve of this tree.
 
 Start-up: whole-process time of `powergraph solve MODEL --json` against the time of
 `python -c "import numpy, yaml"` (what any run needs anyway), alternating too.
@@ -42,9 +45,11 @@ MODELS = (("RV-40E, constant efficiencies", ("models/rv40e_wang2021.yaml", "mode
 
 #: Run in a fresh process with PYTHONPATH set to a tree: ms per solve (best of 5 batches).
 CHILD = """
-import sys, timeit
+import dataclasses, sys, timeit
 import powergraph as pg
 model = pg.load_model(sys.argv[1])
+if sys.argv[3] == "fixed" and getattr(model, "thermal", None) is not None:
+    model = dataclasses.replace(model, thermal=None)   # at the lubricant's own temperature
 pg.solve(model)
 n = int(sys.argv[2])
 print(min(timeit.repeat(lambda: pg.solve(model), number=n, repeat=5)) / n * 1e3)
@@ -61,9 +66,10 @@ def model_file(tree: Path, candidates: tuple[str, ...], friction: bool) -> str:
     raise FileNotFoundError(f"{tree}: none of {candidates} (friction={friction})")
 
 
-def in_process_ms(tree: Path, name: str, number: int) -> float:
+def in_process_ms(tree: Path, name: str, number: int, how: str = "fixed") -> float:
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    out = subprocess.run([sys.executable, "-c", CHILD, name, str(number)], cwd=tree, env=env,
+    out = subprocess.run([sys.executable, "-c", CHILD, name, str(number), how], cwd=tree,
+                         env=env,
                          check=True, capture_output=True, text=True)
     return float(out.stdout.strip())
 
@@ -114,6 +120,17 @@ def main() -> None:
             rows.append({"solve": label, "file": name_ours, "ms": statistics.median(ours),
                          f"ms_at_{args.reference}": statistics.median(theirs),
                          "ratio": statistics.median(ours) / statistics.median(theirs)})
+        name_ours = model_file(ROOT, MODELS[-1][1], True)
+        if "thermal:" in (ROOT / name_ours).read_text():
+            fixed, balanced = [], []
+            for _ in range(args.rounds):
+                fixed.append(in_process_ms(ROOT, name_ours, number, "fixed"))
+                balanced.append(in_process_ms(ROOT, name_ours, number, "balance"))
+            rows.append({"solve": "RV-40E, friction, heat balance", "file": name_ours,
+                         "ms": statistics.median(balanced),
+                         "ms_at_fixed_temperature": statistics.median(fixed),
+                         "heat_balance": statistics.median(balanced)
+                         / statistics.median(fixed)})
     name = model_file(ROOT, MODELS[0][1], False)
     solve = [sys.executable, "-m", "powergraph.cli.main", "solve", name, "--json"]
     imports = [sys.executable, "-c", "import numpy, yaml"]
@@ -130,6 +147,10 @@ def main() -> None:
         print(json.dumps({"in_process": rows, "startup": startup}))
         return
     for row in rows:
+        if "heat_balance" in row:
+            print(f"{row['solve']:<32}{row['ms']:8.3f} ms  at a fixed temperature: "
+                  f"{row['ms_at_fixed_temperature']:8.3f} ms  ratio {row['heat_balance']:.2f}")
+            continue
         print(f"{row['solve']:<32}{row['ms']:8.3f} ms  at {args.reference}: "
               f"{row[f'ms_at_{args.reference}']:8.3f} ms  ratio {row['ratio']:.2f}")
     print(f"{startup['command']:<32}{startup['s']:8.3f} s   import numpy, yaml: "

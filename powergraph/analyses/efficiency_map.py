@@ -156,7 +156,8 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     mode : str, optional
         The mode of a model with modes. A mode whose freewheels are decided at each
         operating point is solved point by point as its case
-        (:class:`~powergraph.statics.case.TrainCase`), as ``solve --mode`` would.
+        (:class:`~powergraph.statics.case.TrainCase`), as ``solve --mode`` would; so is
+        a train with a heat balance (``thermal:``), each point at its own oil temperature.
 
     Returns
     -------
@@ -168,7 +169,7 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     if np.any(speeds == 0.0):
         raise UsageError("input speeds must be non-zero")
     case = TrainCase.of(model, mode)
-    if case.decides_freewheels:
+    if case.decides_freewheels or model.thermal is not None:
         return _case_map(case, torques, speeds, rated_torque)
     model = case.gear_model
     dependent = any(f.load_dependent for f in friction_meshes(model).values())
@@ -195,8 +196,9 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
 
 def _case_map(case: TrainCase, torques: np.ndarray, speeds: np.ndarray,
               rated_torque: float | None) -> EfficiencyMap:
-    """The map of a mode whose freewheels depend on the load: every point the case's own
-    answer (NaN where no freewheel state is consistent)."""
+    """The map of a mode whose freewheels depend on the load, or of a train whose oil
+    temperature a heat balance sets at each point: every point the case's own answer (NaN
+    where no freewheel state is consistent)."""
     sense = np.sign(case.point().required().result.ratio or 1.0)
     values = np.full((speeds.size, torques.size), np.nan)
     power = np.full_like(values, np.nan)

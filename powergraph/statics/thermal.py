@@ -16,7 +16,8 @@ Verdicts (:attr:`ThermalState.verdict`): ``ok``; ``at ambient`` when the cooler 
 away at least the losses at ambient (the oil does not warm up: the answer is at ambient);
 ``over the oil's limit`` when the losses at the oil's ``max_temperature`` still exceed what
 the housing gives off there: no steady state below the limit, the answer shown is at the
-limit, with a warning.
+limit, with a warning; ``does not settle`` when the iteration does not converge (a loss
+that grows faster with the temperature than h·A: the answer shown is the last step's).
 
 Examples
 --------
@@ -43,9 +44,9 @@ from powergraph.model.lubricant import ZERO_C, at_temperature
 from powergraph.model.spec import Model
 from powergraph.records import record
 
-#: How closely the root is bracketed (K).
-XTOL = 1e-12
-VERDICTS = ("ok", "at ambient", "over the oil's limit")
+#: The balance's closing tolerance, relative to the loss; the most solves it may take.
+RTOL, MAX_STEPS = 1e-9, 100
+VERDICTS = ("ok", "at ambient", "over the oil's limit", "does not settle")
 
 
 @record
@@ -70,6 +71,11 @@ class ThermalState:
                            f"({self.temperature - ZERO_C:g} degC): no steady temperature "
                            "below it; the answer shown is at the limit (add area, a cooler, "
                            "or a better-cooled housing)", "thermal", code="overheats"),)
+        if self.verdict == "does not settle":
+            return (Caveat("the heat balance does not settle: the losses change faster with "
+                           "the oil temperature than the housing's h·A; the answer shown is "
+                           f"at {self.temperature - ZERO_C:g} degC", "thermal",
+                           code="thermal-unsettled"),)
         if self.verdict == "at ambient":
             return (Caveat("the cooler takes away at least the losses at ambient: the oil "
                            "stays at the ambient temperature", "thermal.cooler",
@@ -80,29 +86,34 @@ class ThermalState:
 def solve_thermal(model: Model, speeds: Mapping[str, float] | None,
                   solve: Callable) -> Any:
     """``solve(model, speeds)`` at the oil temperature of ``model.thermal``'s balance;
-    the result carries the :class:`ThermalState` in ``thermal``."""
-    from scipy.optimize import brentq
+    the result carries the :class:`ThermalState` in ``thermal``.
 
+    The temperature is the fixed point of ``T = T_ambient + (loss(T) − P_cooler)/(h·A)``,
+    iterated from the lubricant's own temperature: each step is a whole solve at the last
+    temperature, and the iteration stops when the balance closes to :data:`RTOL` of the
+    loss at the temperature of the answer. It contracts as long as the loss changes by
+    less than h·A per kelvin (viscous losses fall as the oil warms); otherwise, or when
+    it leaves the range between the ambient and the oil's limit, the verdict says so.
+    """
     balance, oil = model.thermal, model.lubricant
     plain = dataclasses.replace(model, thermal=None)
-    results: dict[float, Any] = {}
-
-    def at(temperature: float) -> Any:
-        if temperature not in results:
-            results[temperature] = solve(at_temperature(plain, temperature), speeds)
-        return results[temperature]
-
-    def residual(temperature: float) -> float:
-        return at(temperature).total_loss - balance.heat(temperature)
-
     low, high = balance.ambient, max(oil.max_temperature, balance.ambient)
-    if residual(low) <= 0.0:
-        temperature, verdict = low, "at ambient"
-    elif residual(high) > 0.0:
-        temperature, verdict = high, "over the oil's limit"
-    else:
-        temperature, verdict = brentq(residual, low, high, xtol=XTOL), "ok"
-    result = at(temperature)
+    temperature, verdict = min(max(oil.temperature, low), high), "does not settle"
+    for _ in range(MAX_STEPS):
+        result = solve(at_temperature(plain, temperature), speeds)
+        residual = result.total_loss - balance.heat(temperature)
+        if abs(residual) <= RTOL * max(result.total_loss, balance.heat(temperature), 1e-300):
+            verdict = "ok"
+            break
+        following = low + (result.total_loss - balance.cooler) / (
+            balance.heat_transfer * balance.area)
+        if following <= low and temperature == low:
+            verdict = "at ambient"
+            break
+        if following >= high and temperature == high:
+            verdict = "over the oil's limit"
+            break
+        temperature = min(max(following, low), high)
     heat = result.total_loss if verdict == "ok" else balance.heat(temperature)
     return dataclasses.replace(result, thermal=ThermalState(
         float(temperature), float(heat), balance.ambient, verdict))
