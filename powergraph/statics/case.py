@@ -26,6 +26,8 @@ Examples
 ('ok', 2.333333, {'F1': 'holding'})
 >>> TrainCase.of(case.model, "1", backdrive=True).point().verdict[:33]
 'no consistent freewheel state (F1'
+>>> [s.kind for s in case.losses]
+['mesh', 'mesh', 'mesh', 'mesh']
 """
 from __future__ import annotations
 
@@ -158,6 +160,15 @@ class TrainCase:
         if self.decides_freewheels:
             return None
         return self.base_model
+
+    @property
+    def losses(self) -> tuple:
+        """Every loss source of the case (:func:`powergraph.statics.loss_sources.
+        loss_sources` of the train in its mode: meshes, bearings, seals, drags, open
+        clutches' drag, machines), the list every evaluator's losses are read from."""
+        from powergraph.statics.loss_sources import loss_sources
+
+        return loss_sources(self.base_model)
 
     def plain_model(self) -> Model:
         """The plain train of the case at its own operating point: :attr:`gear_model`,

@@ -212,3 +212,75 @@ def test_bad_oil_blocks_name_their_place(change, place) -> None:
     with pytest.raises(ModelError) as error:
         train(oil=oil, thermal=change.get("thermal"))
     assert str(error.value).startswith(place)
+
+
+def test_every_evaluator_has_the_spin_losses() -> None:
+    """A duty cycle's energy per source and the map's points are the single solve's: the
+    seal's 6.921 W for 2 s is 13.842 J; the map at the solve's own output torque is the
+    solve's efficiency; the formulas and the compiled sweep refuse (they read plain
+    efficiencies)."""
+    import io
+
+    from powergraph.analyses.cycle import cycle
+    from powergraph.analyses.efficiency_map import efficiency_map
+    from powergraph.analyses.formula import derive_formulas
+    from powergraph.analyses.sweep import compile_sweep
+    from powergraph.errors import MethodNotApplicableError
+
+    model = train(efficiency=1.0, wet=False)
+    result = pg.solve(model)
+    points = io.StringIO("1.speed [rpm],1.power [W],duration [s]\n1000,1000,2\n")
+    energy = cycle(model, points).energy_lost
+    assert energy["seal 1-0"] == pytest.approx(2 * 7.69e-6 * 900 * 1000, rel=1e-12)
+    torque = abs(result.ports[1].torque)            # the load the output drives
+    grid = efficiency_map(model, [torque], [1000.0])
+    assert grid.efficiency[0, 0] == pytest.approx(result.efficiency, rel=1e-12)
+    with pytest.raises(MethodNotApplicableError):
+        derive_formulas(model)
+    with pytest.raises(ModelError, match="constant efficiencies"):
+        compile_sweep(model, {"links[0].efficiency": [0.9]})
+    balanced = train(thermal={"ambient": "20 degC", "heat_transfer": 18, "area": 0.3})
+    solved = pg.solve(balanced)
+    mapped = efficiency_map(balanced, [abs(solved.ports[1].torque)], [1000.0])
+    assert mapped.efficiency[0, 0] == pytest.approx(solved.efficiency, rel=1e-9)
+
+
+def _wet_simpson():
+    raw = load_yaml_file("models/simpson_3speed.yaml")
+    raw["lubricant"] = OIL
+    for link in raw["links"]:
+        if link["type"] in ("clutch", "brake"):
+            link["drag"] = {"wet": WET}
+    return model_from_dict(raw)
+
+
+@pytest.mark.parametrize("backdrive", [False, True], ids=["fwd", "coast"])
+def test_wet_clutches_in_every_mode_agree_across_evaluators(backdrive: bool) -> None:
+    """The Simpson 3-speed with wet drag on every clutch and brake: in every mode, forward
+    and coasting, the case's solve, the gear table and a duty-cycle row give the same
+    efficiency and verdict; the open elements' drag is in each."""
+    import io
+
+    from powergraph.analyses.cycle import cycle
+    from powergraph.analyses.gear_table import gear_table
+
+    model = _wet_simpson()
+    rows = {r.mode: r for r in gear_table(model).rows}
+    for mode in model.modes:
+        point = TrainCase.of(model, mode, backdrive).point()
+        row = rows[mode]
+        verdict = row.coast_verdict if backdrive else row.verdict
+        assert verdict == point.verdict, mode
+        if point.result is None:
+            continue
+        assert_conservation(point.result)
+        assert any(s.kind == "bearing" and s.loss > 0 for s in point.result.bearings), mode
+        efficiency = row.coast_efficiency if backdrive else row.efficiency
+        assert efficiency == pytest.approx(point.result.efficiency, rel=1e-9), mode
+        if backdrive:
+            continue
+        port = model.inputs[0]
+        text = (f"mode,{port.component}.speed [rad/s],{port.component}.power [W],"
+                f"duration [s]\n{mode},{port.speed!r},{port.power!r},1\n")
+        row = cycle(model, io.StringIO(text)).rows[0]
+        assert row.efficiency == pytest.approx(point.result.efficiency, rel=1e-9), mode
