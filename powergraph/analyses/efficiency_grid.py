@@ -11,10 +11,14 @@ batched ``numpy.linalg.solve``. Each point stops at the pass where the single so
 stop (no efficiency changing by more than the tolerance, no bearing torque by more than the
 tolerance times the largest torque of the train), so its values are the single solve's.
 
-After convergence each point is checked: the pattern its forces give must agree with the
-assumed one, and its balance must be well conditioned. Points that fail, and points that do
-not converge, are solved one by one with :func:`powergraph.statics.solve`; a point that does
-not converge there either is reported, not dropped.
+The points are batched by the sense of the input speed and the sign of the output torque
+(driving, coasting — the output driving the train — and no load), each batch with its own
+reference. After convergence each point is checked: the pattern its forces give must agree
+with the assumed one, its port powers must have the reference's signs (so its verdict is
+the reference's, :func:`powergraph.statics.verdicts.verdict_of`), and its balance must be
+well conditioned. Points that fail, and points that do not converge, are solved one by one
+with :func:`powergraph.statics.solve`; a point that does not converge there either is
+reported, not dropped.
 
 Examples
 --------
@@ -23,6 +27,9 @@ Examples
 >>> g = solve_grid(m, np.array([1815.0, 1815.0]), np.array([100.0, 412.0]))
 >>> g.efficiency.round(4).tolist(), g.single_solves, g.unconverged.tolist()
 ([0.8264, 0.8702], 0, [False, False])
+>>> g = solve_grid(m, np.array([1815.0, 1815.0]), np.array([-400.0, -5.0]))
+>>> g.efficiency.round(4).tolist(), [VERDICTS[c] for c in g.verdicts]
+([0.8547, 0.0], ['ok', 'self-locking'])
 """
 from __future__ import annotations
 
@@ -46,6 +53,7 @@ from powergraph.statics.loss_sources import torque_sources
 from powergraph.statics.friction import MAX_PASSES, friction_meshes, mesh_friction
 from powergraph.units_si import RAD_S_PER_RPM
 from powergraph.statics.ports import flow_efficiency_of_roles
+from powergraph.statics.verdicts import VERDICTS, verdict_of
 
 #: The single solve's convergence test (the default of ``solve_with_friction``): no
 #: efficiency changes by more than this, no bearing torque by more than this times the
@@ -58,18 +66,24 @@ MAX_CONDITION = 1e12
 
 @record
 class GridSolution:
-    """Efficiency and input power (W) per point; ``unconverged`` marks points whose passes
-    did not converge (efficiency NaN); ``single_solves`` counts points solved one by one."""
+    """Efficiency, input power (W, into the train at the input) and output power (W, taken
+    out at the output: negative where the output drives) per point, and the verdict as a
+    code into :data:`~powergraph.statics.verdicts.VERDICTS` (-1 where there is no answer);
+    ``unconverged`` marks points whose passes did not converge (efficiency NaN);
+    ``single_solves`` counts points solved one by one."""
 
     efficiency: np.ndarray
     input_power: np.ndarray
     unconverged: np.ndarray
     single_solves: int
+    output_power: np.ndarray
+    verdicts: np.ndarray
 
 
 def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> GridSolution:
     """Solve ``model`` at input speeds ``speeds_rpm[p]`` (rpm) with output loads
-    ``torques[p]`` (N·m, resisting the output's motion), all points at once.
+    ``torques[p]`` (N·m; > 0 resisting the output's motion, < 0 driving it: coasting), all
+    points at once.
 
     Parameters
     ----------
@@ -83,17 +97,21 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
     GridSolution
     """
     sense = float(np.sign(solve_speeds(model).ratio or 1.0))
-    efficiency = np.full(speeds_rpm.shape, np.nan)
-    power = np.full(speeds_rpm.shape, np.nan)
+    efficiency, power, taken = (np.full(speeds_rpm.shape, np.nan) for _ in range(3))
+    verdicts = np.full(speeds_rpm.shape, -1, dtype=np.int8)
     pending = np.ones(speeds_rpm.shape, dtype=bool)
-    for sign in (1.0, -1.0):
-        group = np.flatnonzero(np.sign(speeds_rpm) == sign)
-        if group.size:
-            done = _batch(model, speeds_rpm[group], torques[group], sense)
+    for speed_sign in (1.0, -1.0):
+        for torque_sign in (1.0, -1.0, 0.0):
+            group = np.flatnonzero((np.sign(speeds_rpm) == speed_sign)
+                                   & (np.sign(torques) == torque_sign))
+            done = _batch(model, speeds_rpm[group], torques[group], sense) \
+                if group.size else None
             if done is not None:
-                ok, eta, p_in = done
-                efficiency[group[ok]], power[group[ok]] = eta[ok], p_in[ok]
-                pending[group[ok]] = False
+                ok, eta, p_in, p_out, code = done
+                points = group[ok]
+                efficiency[points], power[points], taken[points] = eta[ok], p_in[ok], p_out[ok]
+                verdicts[points] = code
+                pending[points] = False
     unconverged = np.zeros(speeds_rpm.shape, dtype=bool)
     for p in np.flatnonzero(pending):
         try:
@@ -101,25 +119,32 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
         except SolveError:
             unconverged[p] = True
             continue
-        efficiency[p], power[p] = _eta(result), result.input_power
+        efficiency[p], power[p], taken[p] = _eta(result), result.input_power, \
+            result.output_power
+        verdicts[p] = VERDICTS.index(verdict_of(result))
     return GridSolution(efficiency=efficiency, input_power=power, unconverged=unconverged,
-                        single_solves=int(np.count_nonzero(pending)))
+                        single_solves=int(np.count_nonzero(pending)), output_power=taken,
+                        verdicts=verdicts)
 
 
 def at_point(model: Model, speed: float, torque: float, sense: float) -> Model:
-    """``model`` at input speed ``speed`` (rad/s) with output load ``torque`` (N·m)."""
+    """``model`` at input speed ``speed`` (rad/s) with output load ``torque`` (N·m): the
+    load opposes the output's motion when ``torque`` > 0 and drives it when < 0 (the
+    train coasting, back-driven from its output)."""
     model = model.with_port(model.inputs[0].index, speed=speed, power=None, torque=None)
-    # The load opposes the output's motion, whose sense is the input's over the ratio.
+    # The load opposes the output's motion, whose sense is the input's over the ratio
+    # (a negative load aids it).
     return model.with_port(model.outputs[0].index, speed=None, power=None,
                            torque=-float(torque) * float(np.sign(speed) * sense))
 
 
 def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
            sense: float) -> tuple[np.ndarray, ...] | None:
-    """``(settled, efficiency, input power)`` of points whose input speeds share a sign,
-    or None when the train's balance is not a square system with one consistent pattern
-    at a reference point (the first, middle or last that converges; then every point is
-    solved alone)."""
+    """``(settled, efficiency, input power, output power, verdict code)`` of points whose
+    input speeds share a sign and whose output torques do, or None when the train's
+    balance is not a square system with one consistent pattern at a reference point (the
+    first, middle or last that converges; then every point is solved alone). A settled
+    point's verdict is the reference's: it has its pattern and its port powers' signs."""
     reference = None
     for p in dict.fromkeys((0, speeds_rpm.size // 2, speeds_rpm.size - 1)):
         try:
@@ -132,7 +157,8 @@ def _batch(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray,
     grid = _Grid.build(model, speeds_rpm, torques, sense, reference)
     if grid is None:
         return None
-    return grid.iterate(TOLERANCE, MAX_PASSES)
+    done = grid.iterate(TOLERANCE, MAX_PASSES)
+    return None if done is None else (*done, VERDICTS.index(verdict_of(reference)))
 
 
 @record
@@ -151,6 +177,7 @@ class _Grid:
     rel: np.ndarray            # (P, E) w_a - w_c, round-off set to 0
     frictions: dict
     bearings: list
+    signs: tuple               # the reference's signs of the input and output powers
 
     @classmethod
     def build(cls, model: Model, speeds_rpm: np.ndarray, torques: np.ndarray, sense: float,
@@ -170,7 +197,8 @@ class _Grid:
         rel = np.array([relative_speeds(elements, k) for k in kins])[inverse]
         given = -torques * np.sign(speeds_rpm) * sense
         return cls(model, elements, codes, row, loads.unknown, row[out_body], given, speeds,
-                   rel, friction_meshes(model), _bearing_specs(model, row, elements))
+                   rel, friction_meshes(model), _bearing_specs(model, row, elements),
+                   (np.sign(reference.input_power), np.sign(reference.output_power)))
 
     def factors(self, eta: np.ndarray) -> np.ndarray:
         """``(P, E)`` element factors: η where gear a drives, 1/η where b drives, else 1."""
@@ -188,8 +216,8 @@ class _Grid:
         """The passes of ``solve_with_friction`` on every point: start ideal without
         bearing torques; solve; update the efficiencies and bearing torques; a point
         settles at the first pass whose updates are within ``tolerance`` and keeps that
-        pass's values. Returns ``(accepted, efficiency, input power)``, or None when a
-        balance is singular (then every point is solved alone)."""
+        pass's values. Returns ``(accepted, efficiency, input power, output power)``, or
+        None when a balance is singular (then every point is solved alone)."""
         n_points, n_el = self.rel.shape
         eta = np.tile([el.efficiency for el in self.elements], (n_points, 1))
         for k, f in self.frictions.items():
@@ -198,7 +226,7 @@ class _Grid:
         extra = np.zeros((n_points, len(self.row)))
         settled = np.zeros(n_points, dtype=bool)
         broken = np.zeros(n_points, dtype=bool)        # a coefficient left [0, 1): alone
-        out = np.full((3, n_points), np.nan)           # efficiency, input power, agrees
+        out = np.full((4, n_points), np.nan)   # efficiency, input and output power, agrees
         for _ in range(max_passes):
             factors = self.factors(eta)
             try:
@@ -218,8 +246,8 @@ class _Grid:
             if (settled | broken).all():
                 break
             eta, extra = new_eta, new_extra
-        ok = settled & (out[2] > 0)
-        return ok, out[0], out[1]
+        ok = settled & (out[3] > 0)
+        return ok, out[0], out[1], out[2]
 
     def _column(self, link: int) -> int:
         return next(k for k, el in enumerate(self.elements) if el.link == link)
@@ -273,8 +301,9 @@ class _Grid:
 
     def _outputs(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
                  factors: np.ndarray, mask: np.ndarray) -> np.ndarray:
-        """Efficiency, input power and whether the point is accepted (its forces agree with
-        the assumed pattern and its balance is well conditioned)."""
+        """Efficiency, input power, output power and whether the point is accepted (its
+        forces agree with the assumed pattern, its port powers have the reference's signs
+        and its balance is well conditioned)."""
         n_el = len(self.elements)
         speeds = self.speeds[mask]
         w_in = speeds[:, self.row[self.model.body_of[self.model.inputs[0].component]]]
@@ -284,8 +313,10 @@ class _Grid:
         p_out = -self.given[mask] * speeds[:, self.out_row]
         found = self._pattern(matrix, rhs, x, factors, mask)
         agrees = np.all((found == 0) | (found == self.codes), axis=1)
+        agrees &= (np.sign(p_in) == self.signs[0]) & (np.sign(p_out) == self.signs[1])
         agrees &= np.linalg.cond(matrix) < MAX_CONDITION
-        return np.array([flow_efficiency_of_roles(p_in, p_out), p_in, agrees.astype(float)])
+        return np.array([flow_efficiency_of_roles(p_in, p_out), p_in, p_out,
+                         agrees.astype(float)])
 
     def _pattern(self, matrix: np.ndarray, rhs: np.ndarray, x: np.ndarray,
                  factors: np.ndarray, mask: np.ndarray) -> np.ndarray:

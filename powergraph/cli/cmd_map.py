@@ -1,6 +1,10 @@
 """``powergraph map MODEL --torque A:B:N --speed C:D:N [--rated T] [-o FILE] [--json]
-[--loss-map FILE]``: efficiency over output torque (N·m) × input speed (rpm), and the
-same points as a transmission loss map (input speed, input torque, torque loss)."""
+[--loss-map FILE]``: efficiency over output torque (N·m; negative: coasting, the output
+driving the train) × input speed (rpm), and the same points as a transmission loss map
+(input speed, input torque, torque loss), both quadrants as VECTO wants them.
+
+A span that starts with a minus sign is written with ``=``, as argparse wants any value
+that looks like an option: ``--torque=-400:400:9``."""
 from __future__ import annotations
 
 import argparse
@@ -16,7 +20,7 @@ from powergraph.errors import UsageError
 from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE
 
 
-#: Output torques (N·m) and input speeds (rpm) taken: those a model file takes.
+#: Output torques (N·m, either sign) and input speeds (rpm) taken: those a model file takes.
 TORQUE_LIMIT = MAX_TORQUE
 SPEED_LIMIT = MAX_SPEED * 60 / (2 * math.pi)
 #: Most points along one axis.
@@ -47,12 +51,17 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
         "map", help="efficiency over output torque × input speed",
         description="Efficiency map of a 1-DOF train with one input and one output: the "
-                    "output drives a load torque at each input speed. Flat unless a mesh's "
-                    "friction depends on the load (friction: {model: iso14179, ...}) or "
-                    "bearings carry friction or drag (docs/losses.md).")
+                    "output drives a load torque at each input speed (torque > 0), or a "
+                    "load drives the output (torque < 0: coasting; efficiency = power out "
+                    "at the input / power in at the output; 0 when self-locking). Flat on "
+                    "each side unless a mesh's friction depends on the load (friction: "
+                    "{model: iso14179, ...}) or bearings carry friction or drag "
+                    "(docs/losses.md). Write a negative span with '=': --torque=-400:400:9.")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("--torque", required=True, metavar="A:B:N",
-                        help=f"output load torques, N·m (up to {TORQUE_LIMIT:g}; N <= {MAX_POINTS})")
+                        help=f"output torques, N·m: > 0 driving a load, < 0 coasting (the "
+                             f"output drives), 0 no load (up to {TORQUE_LIMIT:g} either way; "
+                             f"N <= {MAX_POINTS}; a negative START as --torque=-A:B:N)")
     parser.add_argument("--speed", required=True, metavar="C:D:N",
                         help=f"input speeds, rpm (up to {SPEED_LIMIT:g} either way; N <= {MAX_POINTS})")
     parser.add_argument("--rated", default=None, metavar="T",
@@ -61,7 +70,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--json", action="store_true", help="print a JSON object")
     parser.add_argument("--loss-map", metavar="FILE",
                         help="write the points as a transmission loss map (.vtlm or .csv: "
-                             "input speed, input torque, torque loss, as VECTO reads it)")
+                             "input speed, input torque, torque loss, as VECTO reads it; "
+                             "give negative torques too for its drag side)")
     add_mode_option(parser, "map")
     parser.set_defaults(handler=run)
 
@@ -88,8 +98,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def write_loss_map(path, result, data_on_stdout: bool = False) -> None:
-    """The map's points as a loss map file (:meth:`EfficiencyMap.loss_map`); points that
-    did not converge are left out, and the user is told how many."""
+    """The map's points as a loss map file (:meth:`EfficiencyMap.loss_map`); the user is
+    told how many points each side has, and how many were left out (no answer)."""
     rows = result.loss_map()
     lines = [LOSS_MAP_HEADER] + [f"{n:.10g},{t:.10g},{loss:.10g}" for n, t, loss in
                                  zip(rows["speed_rpm"], rows["input_torque"],
@@ -101,6 +111,13 @@ def write_loss_map(path, result, data_on_stdout: bool = False) -> None:
 
     write_atomically(path, write)
     left_out = result.efficiency.size - len(rows["speed_rpm"])
-    say_wrote(path, f"({len(lines) - 1} points" +
-              (f"; {left_out} left out: no converged solution)" if left_out else ")"),
+    sides = np.sign(rows["output_torque"])
+    counts = ", ".join(f"{np.count_nonzero(sides == s)} {name}"
+                       for s, name in ((1, "driving"), (-1, "coasting"), (0, "no load"))
+                       if np.any(sides == s))
+    driven = np.count_nonzero((sides < 0) & (rows["input_torque"] > 0))
+    say_wrote(path, f"({len(lines) - 1} points: {counts}" +
+              (f"; {driven} coasting with a positive input torque: the input drives too, "
+               "self-locking" if driven else "") +
+              (f"; {left_out} left out: no solution)" if left_out else ")"),
               data_on_stdout=data_on_stdout)

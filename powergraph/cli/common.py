@@ -23,7 +23,19 @@ class CommandParser(argparse.ArgumentParser):
     exit status 2, like every other bad argument."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(2, f"powergraph: error: {message} (see {self.prog} -h)\n")
+        self.exit(2, f"powergraph: error: {message}{_dash_hint(message)} (see {self.prog} -h)\n")
+
+
+def _dash_hint(message: str) -> str:
+    """For an option left without its value, how to give a value that starts with ``-``
+    (argparse takes ``--torque -400:400:9`` for two options, but reads
+    ``--torque=-400:400:9``).
+
+    >>> _dash_hint("argument -o/--output: expected one argument")
+    '; a value that starts with - is written --output=VALUE'
+    """
+    found = re.fullmatch(r"argument (?:\S+/)?(\S+): expected one argument", message)
+    return f"; a value that starts with - is written {found.group(1)}=VALUE" if found else ""
 
 
 #: A list longer than this is printed one item a line (each item on one line).
