@@ -8,13 +8,14 @@ that looks like an option: ``--torque=-400:400:9``."""
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 
 import numpy as np
 
 from powergraph.cli.cmd_modes import add_mode_option
-from powergraph.cli.common import (check_figure_path, check_output_file, load,
-                                   number_option, print_json, save_figure, say_wrote,
+from powergraph.cli.common import (add_oil_temperature, oil_temperature, check_figure_path, check_output_file,
+                                   load, number_option, print_json, save_figure, say_wrote,
                                    whole_option, write_atomically)
 from powergraph.errors import UsageError
 from powergraph.model.schema_parts import MAX_SPEED, MAX_TORQUE
@@ -73,6 +74,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                              "input speed, input torque, torque loss, as VECTO reads it; "
                              "give negative torques too for its drag side)")
     add_mode_option(parser, "map")
+    add_oil_temperature(parser, span=True)
     parser.set_defaults(handler=run)
 
 
@@ -86,14 +88,37 @@ def run(args: argparse.Namespace) -> int:
     speed = span_option(args.speed, "--speed", SPEED_LIMIT)
     rated = (None if args.rated is None
              else number_option(args.rated, "--rated", 0, TORQUE_LIMIT, above=True))
-    result = efficiency_map(load(args.model), torque, speed, rated, mode=args.mode)
-    print_json(result.to_dict()) if args.json else print(result.text_report())
-    if target is not None:
-        ax = result.plot()
-        save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
-        say_wrote(target, data_on_stdout=args.json)
-    if loss_target is not None:
-        write_loss_map(loss_target, result, data_on_stdout=args.json)
+    model = load(args.model)
+    if args.oil_temperature is None:
+        models = [(None, model)]
+    else:
+        from powergraph.model.lubricant import fixed_temperature
+
+        celsius = span_option(args.oil_temperature, "--oil-temperature", 300.0)
+        models = [(t, fixed_temperature(model, oil_temperature(repr(float(t)))))
+                  for t in celsius]
+        if loss_target is not None and len(models) > 1:
+            raise UsageError("--loss-map: a loss map is for one oil temperature; give one "
+                             "--oil-temperature")
+    maps = [(t, efficiency_map(m, torque, speed, rated, mode=args.mode)) for t, m in models]
+    maps = [(t, result if t is None else
+             dataclasses.replace(result, name=f"{result.name}, oil at {t:g} degC"))
+            for t, result in maps]
+    if args.json:
+        print_json(maps[0][1].to_dict() if args.oil_temperature is None else
+                   {"oil_temperatures": [float(t) + 273.15 for t, _ in maps],
+                    "maps": [result.to_dict() for _, result in maps]})
+    else:
+        print("\n\n".join(result.text_report() for _, result in maps))
+    for t, result in maps:
+        if target is not None:
+            path = target if len(maps) == 1 else target.with_name(
+                f"{target.stem}_{t:g}degC{target.suffix}")
+            ax = result.plot()
+            save_figure(ax.figure, path, dpi=150, bbox_inches="tight")
+            say_wrote(path, data_on_stdout=args.json)
+        if loss_target is not None:
+            write_loss_map(loss_target, result, data_on_stdout=args.json)
     return 0
 
 

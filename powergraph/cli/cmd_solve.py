@@ -1,11 +1,14 @@
 """``powergraph solve MODEL [--json] [--method virtual-power|wang2021] [--mesh-efficiency E]
-[--backdrive] [--mode NAME] [--strict]`` (``--strict``: a model with warnings is refused
-before solving, exit 2)."""
+[--backdrive] [--mode NAME] [--oil-temperature T] [--strict]`` (``--strict``: a model with
+warnings is refused before solving, exit 2; ``--oil-temperature``: the oil at T degC, its
+heat balance set aside)."""
 from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import add_strict, load, print_json, refuse_caveats
+from powergraph.cli.common import (add_oil_temperature, add_strict, load, oil_temperature,
+                                   print_json, refuse_caveats)
+from powergraph.model.lubricant import fixed_temperature
 
 METHODS = ("virtual-power", "wang2021")
 
@@ -27,6 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     _result_options(parser)
     parser.add_argument("--mode", metavar="NAME",
                         help="solve the model in this mode of its modes table (docs/modes.md)")
+    add_oil_temperature(parser)
     parser.set_defaults(handler=run)
 
 
@@ -38,6 +42,8 @@ def _result_options(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     model = load(args.model, args.mesh_efficiency)
+    if args.oil_temperature is not None:
+        model = fixed_temperature(model, oil_temperature(args.oil_temperature))
     if args.strict and model.warnings:
         return refuse_caveats(model.warnings)
     from powergraph.statics.case import TrainCase

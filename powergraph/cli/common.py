@@ -393,6 +393,19 @@ def cluster_options(args: Any) -> dict[str, Any]:
     return {"workers": workers, "scheduler": args.scheduler}
 
 
+def add_oil_temperature(parser: argparse.ArgumentParser, span: bool = False) -> None:
+    """``--oil-temperature T``: the oil at T degC, the model's heat balance set aside."""
+    parser.add_argument("--oil-temperature", metavar="A:B:N" if span else "T",
+                        help="the oil temperature, degC (the model's lubricant: block; its "
+                             "heat balance set aside)" + ("; A:B:N for one map per "
+                                                           "temperature" if span else ""))
+
+
+def oil_temperature(text: str, option: str = "--oil-temperature") -> float:
+    """The kelvin of a ``--oil-temperature`` in degC (-60 to 300)."""
+    return number_option(text, option, -60.0, 300.0) + 273.15
+
+
 def number_option(text: str, option: str, low: float | None = None,
                   high: float | None = None, *, above: bool = False,
                   below: bool = False) -> float:

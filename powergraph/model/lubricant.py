@@ -176,6 +176,28 @@ def at_temperature(model: Any, temperature: float) -> Any:
     return bind_oil(dataclasses.replace(model, lubricant=oil))
 
 
+def fixed_temperature(model: Any, temperature: float, where: str = "--oil-temperature") -> Any:
+    """``model`` at oil ``temperature`` (K) without its heat balance: a catalogue's
+    "efficiency at 40 °C". Refused (naming ``where``) for a model without a lubricant, or
+    a temperature outside the oil's range.
+
+    >>> from powergraph.model import load_model
+    >>> cold = fixed_temperature(load_model("models/rv40e.yaml"), ZERO_C + 40)
+    >>> cold.thermal is None, round(cold.lubricant.viscosity(), 9)
+    (True, 0.00032)
+    """
+    from powergraph.errors import UsageError
+
+    if model.lubricant is None:
+        raise UsageError(f"{where}: the model has no lubricant: block (docs/losses.md)")
+    low = READ_RANGE[0]
+    if not low <= temperature <= model.lubricant.max_temperature:
+        raise UsageError(f"{where}: {temperature - ZERO_C:g} degC is outside the oil's range "
+                         f"({low - ZERO_C:g} to {model.lubricant.max_temperature - ZERO_C:g} "
+                         "degC, its max_temperature)")
+    return at_temperature(dataclasses.replace(model, thermal=None), temperature)
+
+
 def bind_oil(model: Any) -> Any:
     """``model`` with every law that takes the oil's viscosity bound to its lubricant at
     the lubricant's temperature; a model without a ``lubricant:`` block and such a law is

@@ -284,3 +284,62 @@ def test_wet_clutches_in_every_mode_agree_across_evaluators(backdrive: bool) -> 
                 f"duration [s]\n{mode},{port.speed!r},{port.power!r},1\n")
         row = cycle(model, io.StringIO(text)).rows[0]
         assert row.efficiency == pytest.approx(point.result.efficiency, rel=1e-9), mode
+
+
+def _write(tmp_path, model_text: str):
+    path = tmp_path / "wet.yaml"
+    path.write_text(model_text)
+    return str(path)
+
+
+WET_PAIR = (
+    "name: wet pair\n"
+    "lubricant: {viscosity_40: 32 cSt, viscosity_100: 5.4 cSt, density: 870 kg/m^3, "
+    "temperature: 80 degC}\n"
+    "thermal: {ambient: 20 degC, heat_transfer: 18 W/(m^2*K), area: 0.3 m^2}\n"
+    "components: {0: {role: frame}, 1: {teeth: 20}, 2: {teeth: 40}, 3: {name: drum}}\n"
+    "links:\n  - {type: mesh, between: [1, 2]}\n  - {type: coupling, between: [2, 3]}\n"
+    "  - {type: bearing, between: [3, 0], drag: {wet: {faces: 6, inner_radius: 60 mm, "
+    "outer_radius: 80 mm, clearance: 0.2 mm}}}\n"
+    "ports:\n  - {component: 1, role: input, speed: 1000 rpm, power: 1 kW}\n"
+    "  - {component: 2, role: output}\n")
+
+
+def test_cli_oil_temperature_sets_the_oil_and_drops_the_heat_balance(tmp_path, capsys) -> None:
+    """solve --oil-temperature 40: ν = 32 cSt exactly, the drag 6π μ Δω (r_o⁴ − r_i⁴)/(2h)
+    at μ = 32e-6·870 Pa·s, Δω = 500 rpm, and no heat balance; map --oil-temperature
+    40:100:2 gives, at each temperature, the solve's answer at that temperature (the drag
+    scales with the viscosity: 5.4/32 at 100 degC)."""
+    path = _write(tmp_path, WET_PAIR)
+    assert main(["solve", path, "--oil-temperature", "40", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert "thermal" not in out and out["lubricant"]["temperature"] == pytest.approx(313.15)
+    torque = 6 * math.pi * 32e-6 * 870 * (W_IN / 2) * (0.08 ** 4 - 0.06 ** 4) / (2 * 0.2e-3)
+    assert out["total_loss"] == pytest.approx(torque * W_IN / 2, rel=1e-12)
+    load = 2 * (1000 - out["total_loss"]) / W_IN          # N·m the output drives
+    assert main(["map", path, "--torque", repr(load), "--speed", "1000",
+                 "--oil-temperature", "40:100:2", "--json"]) == 0
+    maps = json.loads(capsys.readouterr().out)
+    assert maps["oil_temperatures"] == pytest.approx([313.15, 373.15])
+    assert maps["maps"][0]["efficiency"][0][0] == pytest.approx(out["efficiency"], rel=1e-9)
+    assert main(["solve", path, "--oil-temperature", "100", "--json"]) == 0
+    hot = json.loads(capsys.readouterr().out)
+    assert hot["total_loss"] == pytest.approx(out["total_loss"] * 5.4 / 32, rel=1e-12)
+    # the 40 degC load at 100 degC: the same output power over it plus the thinner drag
+    delivered = 1000 - out["total_loss"]
+    assert maps["maps"][1]["efficiency"][0][0] == pytest.approx(
+        delivered / (delivered + hot["total_loss"]), rel=1e-9)
+
+
+@pytest.mark.parametrize("argv,message", [
+    (["solve", "{model}", "--oil-temperature", "400"], "--oil-temperature 400"),
+    (["solve", "models/wolfrom_3k.yaml", "--oil-temperature", "40"], "no lubricant"),
+    (["map", "{model}", "--torque", "10", "--speed", "1000", "--oil-temperature", "40:80:2",
+      "--loss-map", "{tmp}/x.vtlm"], "one oil temperature"),
+])
+def test_cli_oil_temperature_errors_are_one_line(tmp_path, capsys, argv, message) -> None:
+    path = _write(tmp_path, WET_PAIR)
+    argv = [a.format(model=path, tmp=tmp_path) for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and message in err and "Traceback" not in err
