@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss, sliding_integral
+from powergraph.gears.mesh_loss import MeshGeometry, mesh_loss, path_of_contact, sliding_integral
 from powergraph.cli.main import main
 from powergraph.errors import ModelError
 
@@ -202,3 +202,30 @@ def test_iso14179_mean_friction_coefficient_by_hand() -> None:
     # An internal pair has a larger reduced radius of curvature, hence a smaller μ.
     ring = MeshGeometry(20, 60, internal=True, module=2.0, addendum=0.8)
     assert iso14179_mu(1000.0, 20.0, 5.0, ring, 30.0, 0.5) < mu
+
+
+def test_fzg_c40_pair_agrees_with_the_porto_groups_own_code() -> None:
+    # The FZG type C40 test pair (z 16/24, m 4.5 mm, α 20°, x 0.1817/0.1715, b 40 mm) as
+    # given in the public code of the Porto group whose FZG power-loss measurements are
+    # discussed in docs/losses.md ("Against measurements"): cfernandesFEUP/Gear-Calculation,
+    # GearC/gears.py, gear 'C40'. Their GEARpie report of the same pair (REPORT/C40.txt)
+    # prints: working pitch radii 36.600 / 54.900 mm, base radii 33.829 / 50.743 mm, base
+    # pitch 13.285 mm, T1T2 34.93 mm, AC 9.68 mm, AD 13.28 mm, AE 19.43 mm, ε_α 1.46, and
+    # the loss factor H_V 0.1986 (Ohlendorf) / 0.1984 (Wimmer, numerical). An independent
+    # implementation, not a measurement: it checks the geometry a comparison with their
+    # measured torque losses would rest on.
+    g = MeshGeometry(16, 24, module=4.5, shift_1=0.1817, shift_2=0.1715)
+    path = path_of_contact(g)
+    loss = mesh_loss(g)
+    assert round(path.working_radius_1, 3) == 36.600
+    assert round(path.working_radius_2, 3) == 54.900
+    assert round(path.base_pitch, 3) == 13.285
+    assert round(36.0 * math.cos(ALPHA), 3) == 33.829          # base radii, r·cos α
+    assert round(54.0 * math.cos(ALPHA), 3) == 50.743
+    t1t2 = (path.working_radius_1 + path.working_radius_2) * math.sin(path.working_pressure_angle)
+    assert round(t1t2, 2) == 34.93
+    assert round(path.addendum_path_2, 2) == 9.68                # A to the pitch point C
+    assert round(loss.epsilon_alpha * path.base_pitch, 2) == 19.43   # AE
+    assert round(loss.epsilon_alpha, 2) == 1.46
+    assert round(loss.loss_factor, 4) == 0.1986
+    assert loss.loss_factor == pytest.approx(0.1984, rel=2e-3)    # Wimmer's numerical H_VL
