@@ -1,3 +1,5 @@
-"""Gear geometry and mesh physics that several layers need (base layer: imports only
-:mod:`powergraph.errors`): the involute function, contact ratios, Ohlendorf's loss factor
-and the ISO/TR 14179-2 friction coefficient."""
+"""Gear geometry and mesh physics that several layers need (base layer: imports only other
+base-layer modules): the involute function, contact ratios, Ohlendorf's loss factor, the
+ISO/TR 14179-2 friction coefficient, and pure loss laws not yet wired into the solve: SKF's
+bearing frictional moment (:mod:`powergraph.gears.skf_bearing`) and Changenet & Velex's
+churning torque (:mod:`powergraph.gears.churning`)."""
