@@ -213,7 +213,8 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     case = TrainCase.of(model, mode)
     if case.decides_freewheels or model.thermal is not None:
         emap = _case_map(case, torques, speeds, rated_torque)
-    elif any(f.load_dependent for f in friction_meshes(case.gear_model).values()):
+    elif any(f.load_dependent for f in friction_meshes(case.gear_model).values()) or any(
+            not getattr(s.friction, "affine", True) for s in torque_sources(case.gear_model)):
         emap = _dependent_map(case.gear_model, torques, speeds, rated_torque)
     else:
         emap = _plain_map(case.gear_model, torques, speeds, rated_torque)

@@ -35,8 +35,8 @@ class BearingFriction:
     mu: float
     bore: float
 
-    def torque(self, radial_load: float) -> float:
-        """Friction torque (N·m) of one bearing under ``radial_load`` (N).
+    def torque(self, radial_load: float, relative_speed: float = 0.0) -> float:
+        """Friction torque (N·m) of one bearing under ``radial_load`` (N), at any speed.
 
         >>> BearingFriction(0.0015, 20.0).torque(1000.0)     # 0.0015 * 1000 N * 0.010 m
         0.015
@@ -166,6 +166,12 @@ def parse_bearing_blocks(raw: Mapping, path: str) -> dict[str, Any]:
         bore = parse_quantity(friction["bore"], "length", f"{path}.friction.bore")
         _non_negative(bore, f"{path}.friction.bore", "mm")
         blocks["friction"] = BearingFriction(mu=float(friction["mu"]), bore=bore)
+    if "skf" in raw:
+        if "friction" in raw:
+            raise ModelError("give friction (mu, bore) or skf, not both", f"{path}.skf")
+        from powergraph.model.block_spin import parse_skf
+
+        blocks["friction"] = parse_skf(raw["skf"], f"{path}.skf")
     if "drag" in raw:
         blocks["drag"] = parse_drag(raw["drag"], f"{path}.drag")
     return blocks

@@ -217,8 +217,11 @@ def bind_oil(model: Any) -> Any:
         if any(map(needs_oil, link.blocks.values())) else link for link in model.links)
     shifts = tuple(dataclasses.replace(e, drag=bound(e.drag, f"links[{e.index}].drag"))
                    if needs_oil(e.drag) else e for e in model.shift_elements)
-    components = {cid: dataclasses.replace(c, drag=bound(c.drag, f"components.{c.raw_id}.drag"))
-                  if needs_oil(c.drag) else c for cid, c in model.components.items()}
+    components = {cid: dataclasses.replace(
+        c, drag=bound(c.drag, f"components.{c.raw_id}.drag"),
+        churning=bound(c.churning, f"components.{c.raw_id}.churning"))
+        if needs_oil(c.drag) or needs_oil(c.churning) else c
+        for cid, c in model.components.items()}
     if links == model.links and shifts == model.shift_elements and all(
             components[cid] is c for cid, c in model.components.items()):
         return model

@@ -31,7 +31,7 @@ from __future__ import annotations
 from typing import Any
 
 from powergraph.model.schema_losses import (_BEARING_FRICTION, _CRANK_BEARING, _DRAG,
-                                            _LUBRICANT, _THERMAL,
+                                            _CHURNING, _LUBRICANT, _SKF, _THERMAL,
                                             _FRICTION, _MESH_GEOMETRY, _OUTPUT_PINS, _PINS)
 from powergraph.model.schema_parts import (MAX_COUNT, MAX_POWER, MAX_RATIO, MAX_SPEED,
                                            MAX_TEETH, MAX_TORQUE, MIN_RATIO, _EFFICIENCY,
@@ -158,6 +158,7 @@ _COMPONENT = {
         "geometry": _ref("geometry"),
         "drag": _ref("drag", description="The body's no-load drag against the frame (seals, "
                                          "churning; docs/losses.md)."),
+        "churning": _CHURNING,
         "note": _text("note", "Free text, ignored by the analyses."),
     },
     "additionalProperties": False,
@@ -270,7 +271,8 @@ _SCHEMA: dict[str, Any] = {
                      _link("bearing", "Records which member carries which (between: [planet, "
                            "carrier]); sets no speed; passes no power unless it has "
                            "friction or drag (docs/losses.md).",
-                           {"friction": _ref("bearingFriction"), "drag": _ref("drag")}),
+                           {"friction": _ref("bearingFriction"), "drag": _ref("drag"),
+                            "skf": _SKF}),
                      {**_link("seal", "A lip seal between two members: it loses "
                               "7.69e-6·d²·n W at n rpm of relative speed, d in mm "
                               "(ISO/TR 14179-2; docs/losses.md).",

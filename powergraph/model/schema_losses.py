@@ -171,6 +171,38 @@ _TEMPERATURE = {"title": "temperature",
                 "anyOf": [{"type": "number", "exclusiveMinimum": 0},
                           {"type": "string", "maxLength": 64}],
                 "examples": ["80 degC", 353.15]}
+_SKF = {
+    "type": "object", "title": "SKF bearing",
+    "description": "A rolling bearing by SKF's four-component model: its frictional moment "
+                   "at the radial load of the carried member's tooth forces, the relative "
+                   "speed and the lubricant's viscosity (docs/losses.md).",
+    "properties": {
+        "series": {"type": ["string", "integer"], "title": "series",
+                   "description": "Bearing series: 60, 62, 63, 64 (deep groove ball), "
+                                  "NU 2, NU 3, NU 4 (cylindrical roller)."},
+        "bore": _length("bore", "Bore diameter d."),
+        "outside": _length("outside", "Outside diameter D."),
+        "lubrication": {"enum": ["oil_bath", "oil_jet", "grease", "oil_air"],
+                        "title": "lubrication", "description": "How it is lubricated "
+                        "(the replenishment constant K_rs). Default oil_bath."}},
+    "additionalProperties": False, "required": ["series", "bore", "outside"],
+}
+_CHURNING = {
+    "type": "object", "title": "churning",
+    "description": "The gear dips into the sump: its churning torque against the housing by "
+                   "Changenet & Velex (2007), with the lubricant's viscosity and density "
+                   "(docs/losses.md). Not for planets.",
+    "properties": {
+        "immersion": _length("immersion", "Depth of the pitch circle's lowest point below "
+                                          "the oil level."),
+        "oil_volume": _quantity("volume", "oil_volume", "Oil volume of the sump.",
+                                exclusiveMinimum=0),
+        "pitch_radius": _length("pitch_radius", "Pitch radius. Default: module x teeth / 2 "
+                                                "of the gear's geometry."),
+        "face_width": _length("face_width", "Face width. Default: the gear's "
+                                            "geometry.face_width.")},
+    "additionalProperties": False, "required": ["immersion", "oil_volume"],
+}
 _LUBRICANT = {
     "type": "object", "title": "lubricant",
     "description": "The oil: its viscosity at 40 and 100 degC (or an ISO VG grade), density "

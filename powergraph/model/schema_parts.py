@@ -23,7 +23,7 @@ LINK_TYPES = ("mesh", "fixed", "coupling", "bearing", "seal", "clutch", "brake",
 _UNIT_TEXT = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
 _SI = {"speed": "rad/s", "power": "W", "torque": "N·m", "length": "mm",
        "kinematic viscosity": "m²/s", "density": "kg/m³", "area": "m²",
-       "heat transfer coefficient": "W/(m²·K)", "temperature": "K"}
+       "heat transfer coefficient": "W/(m²·K)", "temperature": "K", "volume": "m³"}
 
 
 def _ref(name: str, **annotations: Any) -> dict:
@@ -55,7 +55,7 @@ _EXAMPLES = {"speed": ["1500 rpm", 157.08], "power": ["2.27 kW", 1000],
              "torque": ["120 N*m", 12.5], "length": ["12 mm", 1.5],
              "kinematic viscosity": ["32 cSt"], "density": ["870 kg/m^3"],
              "area": ["0.3 m^2"], "heat transfer coefficient": ["18 W/(m^2*K)"],
-             "temperature": ["80 degC", 353.15]}
+             "temperature": ["80 degC", 353.15], "volume": ["1.5 L"]}
 
 
 def _text(title: str, description: str) -> dict:

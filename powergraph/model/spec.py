@@ -85,7 +85,8 @@ class Model:
     def has_bearing_losses(self) -> bool:
         """True when a bearing has ``friction``/``drag``, a component has ``drag``, or a
         seal joins two members."""
-        return any(c.drag is not None for c in self.components.values()) or any(
+        return any(c.drag is not None or c.churning is not None
+                   for c in self.components.values()) or any(
             link.type in ("bearing", "seal") and link.blocks for link in self.links)
 
     @cached_property

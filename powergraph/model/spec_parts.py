@@ -45,6 +45,7 @@ class Component:
     geometry: Any = None
     note: str | None = None
     drag: Any = None  # no-load drag against the frame (block_bearing.Drag; docs/losses.md)
+    churning: Any = None  # dipped in the sump (block_spin.ChurningLaw; docs/losses.md)
 
     @property
     def is_frame(self) -> bool:

@@ -42,7 +42,7 @@ from powergraph.units_si import RAD_S_PER_RPM
 #: SI unit of each kind of quantity a model may carry.
 SI_UNITS = {"speed": "rad/s", "power": "W", "torque": "N*m", "length": "mm",
             "kinematic viscosity": "m^2/s", "density": "kg/m^3", "area": "m^2",
-            "heat transfer coefficient": "W/(m^2*K)"}
+            "heat transfer coefficient": "W/(m^2*K)", "volume": "m^3"}
 #: Longest quantity string read, and longest unit name in it.
 MAX_TEXT, MAX_NAME = 64, 24
 #: Largest power of a unit (``m^4``) and deepest parentheses in a quantity string.
@@ -69,6 +69,8 @@ _TABLES = {
                             (("St", "cm^2/s"), 1e-4)),
     "density": ((("kg/m^3",), 1.0), (("g/cm^3", "kg/L", "g/mL"), 1e3), (("g/L",), 1.0)),
     "area": ((("m^2",), 1.0), (("mm^2",), 1e-6), (("cm^2",), 1e-4), (("dm^2",), 1e-2)),
+    "volume": ((("m^3",), 1.0), (("L", "l", "dm^3"), 1e-3), (("cm^3", "mL", "ml"), 1e-6),
+               (("mm^3",), 1e-9)),
     "heat transfer coefficient": ((("W/(m^2*K)", "W/m^2/K"), 1.0),
                                   (("kW/(m^2*K)",), 1e3)),
 }

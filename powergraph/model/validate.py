@@ -106,6 +106,7 @@ def _model(data: Any, source: str | None) -> Model:
     if modes:
         model = _default_state(model)
     check_topology(model)
+    _check_churning(model)
     if model.has_bearing_losses:
         from powergraph.model.block_bearing import check_bearing_loads
 
@@ -119,6 +120,19 @@ def _model(data: Any, source: str | None) -> Model:
         model = dataclasses.replace(model, tolerances=validate_tolerances(data["tolerances"],
                                                                          model))
     return model
+
+
+def _check_churning(model: Model) -> None:
+    """Churning is a gear's against the housing: a planet's (its mesh on a moving
+    carrier) is not modelled."""
+    for link in model.meshes:
+        if model.body_of[link.carrier] == model.frame_body:
+            continue
+        for gear in link.between:
+            component = model.components[gear]
+            if component.churning is not None:
+                raise ModelError("churning of a planet (a gear on a moving carrier) is not "
+                                 "modelled", f"components.{component.raw_id}.churning")
 
 
 def _oil(data: Mapping) -> dict[str, Any]:
@@ -232,11 +246,21 @@ def _component(cid: str, raw_id: Any, attrs: Mapping, path: str) -> Component:
         if attrs.get("role") == "frame":
             raise ModelError("the frame does not turn, so it has no drag", f"{path}.drag")
         drag = parse_drag(drag, f"{path}.drag")
-    return Component(id=cid, raw_id=raw_id,
-                     name=optional_name(attrs.get("name"), f"{path}.name", "component name"),
-                     role=attrs.get("role"), kind=_text(attrs.get("kind")), teeth=teeth,
-                     internal=attrs.get("internal", False), count=attrs.get("count", 1),
-                     geometry=geometry, note=_text(attrs.get("note")), drag=drag)
+    component = Component(id=cid, raw_id=raw_id,
+                          name=optional_name(attrs.get("name"), f"{path}.name",
+                                             "component name"),
+                          role=attrs.get("role"), kind=_text(attrs.get("kind")), teeth=teeth,
+                          internal=attrs.get("internal", False), count=attrs.get("count", 1),
+                          geometry=geometry, note=_text(attrs.get("note")), drag=drag)
+    if "churning" in attrs:
+        from powergraph.model.block_spin import parse_churning
+
+        if attrs.get("role") == "frame":
+            raise ModelError("the frame does not turn, so it churns no oil",
+                             f"{path}.churning")
+        component = dataclasses.replace(component, churning=parse_churning(
+            attrs["churning"], component, f"{path}.churning"))
+    return component
 
 
 def _ref(raw: Any, components: Mapping[str, Component], path: str) -> str:
@@ -260,7 +284,7 @@ def _link(raw: Mapping, index: int, components: Mapping[str, Component], frame: 
         fields = _mesh_fields(raw, path, (a, b), components, frame, default_eta)
     elif kind == "coupling" and "efficiency" in raw:
         fields["efficiency"] = float(raw["efficiency"])
-    elif kind == "bearing" and ("friction" in raw or "drag" in raw):
+    elif kind == "bearing" and ("friction" in raw or "drag" in raw or "skf" in raw):
         from powergraph.model.block_bearing import parse_bearing_blocks
 
         fields["blocks"] = MappingProxyType(parse_bearing_blocks(raw, path))

@@ -124,15 +124,16 @@ def relative_speed(w_1: Any, w_2: Any) -> Any:
 
 
 def bearing_torque(count: int, friction: Any, drag: Any, load: Any, relative: Any) -> tuple:
-    """The law of one bearing or drag: per instance its friction torque ``μ·F·d/2`` at the
-    radial load and its drag torque at the relative speed, and the total torque of
+    """The law of one bearing or drag: per instance its friction torque at the radial load
+    and the relative speed (``μ·F·d/2``, or SKF's model) and its drag torque at the
+    relative speed, and the total torque of
     ``count`` instances opposing the relative rotation (0 at rest). Numbers or arrays.
 
     Returns
     -------
     (friction torque, drag torque, total torque), N·m
     """
-    m_friction = friction.torque(load) if friction is not None else 0.0 * load
+    m_friction = friction.torque(load, relative) if friction is not None else 0.0 * load
     m_drag = drag.torque(relative) if drag is not None else 0.0 * relative
     total = np.where(np.asarray(relative) != 0.0, count * (m_friction + m_drag), 0.0)
     return m_friction, m_drag, (float(total) if total.ndim == 0 else total)

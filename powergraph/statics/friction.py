@@ -148,7 +148,7 @@ def loss_block_places(model: Model) -> list[str]:
         elif source.applied == "machine":
             continue
         elif source.kind == "bearing":
-            found += [(where, f"{source.path}.{key}") for key, law in
+            found += [(where, f"{source.path}.{getattr(law, 'block', key)}") for key, law in
                       (("friction", source.friction), ("drag", source.drag)) if law is not None]
         else:
             found.append((where, source.path))

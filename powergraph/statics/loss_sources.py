@@ -135,12 +135,14 @@ def bearings(model: Model) -> Iterator[LossSource]:
 
 
 def drags(model: Model) -> Iterator[LossSource]:
-    """Each component with a ``drag:`` block, against the housing."""
+    """Each component with a ``drag:`` block, and each gear dipped in the sump
+    (``churning:``), against the housing."""
     for component in model.components.values():
-        if component.drag is not None:
-            yield LossSource("drag", f"components.{component.raw_id}.drag",
-                             f"drag {component.raw_id}", None, (component.id, model.frame),
-                             component.count, None, component.drag)
+        for kind, law in (("drag", component.drag), ("churning", component.churning)):
+            if law is not None:
+                yield LossSource(kind, f"components.{component.raw_id}.{kind}",
+                                 f"{kind} {component.raw_id}", None,
+                                 (component.id, model.frame), component.count, None, law)
 
 
 def machines(model: Model) -> Iterator[LossSource]:

@@ -343,3 +343,78 @@ def test_cli_oil_temperature_errors_are_one_line(tmp_path, capsys, argv, message
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and message in err and "Traceback" not in err
+
+
+DIPPED = {
+    "name": "dipped pair", "lubricant": {"grade": "ISO VG 100", "temperature": "60 degC"},
+    "components": {
+        0: {"role": "frame"},
+        1: {"teeth": 20, "geometry": {"shape": "gear", "module": 3, "face_width": 20,
+                                      "bore_radius": 10}},
+        2: {"teeth": 60, "geometry": {"shape": "gear", "module": 3, "face_width": 20,
+                                      "bore_radius": 10},
+            "churning": {"immersion": "30 mm", "oil_volume": "2 L"}}},
+    "links": [{"type": "mesh", "between": [1, 2], "efficiency": 0.99},
+              {"type": "bearing", "between": [1, 0],
+               "skf": {"series": "62", "bore": "30 mm", "outside": "62 mm"}}],
+    "ports": [{"component": 1, "role": "input", "speed": "1500 rpm", "power": "5 kW"},
+              {"component": 2, "role": "output"}]}
+
+
+def test_skf_bearing_and_churning_gear_are_loss_sources_at_the_oils_viscosity() -> None:
+    """The pinion's 6206-size bearing (62 series, 30 x 62 mm) carries the tooth force
+    (T_in − M_bearing) / r_1 (r_1 = 3·20/2 mm) at 1500 rpm; the wheel (r = 90 mm, b = 20 mm) dips 30 mm
+    into 2 L of ISO VG 100 at 60 degC and turns at 500 rpm. Each loss is its law's
+    (powergraph.gears.skf_bearing, powergraph.gears.churning; tested there by hand) at
+    these inputs, and the balance holds."""
+    from powergraph.gears.churning import churning_torque
+    from powergraph.gears.skf_bearing import skf_moment
+
+    model = model_from_dict(DIPPED)
+    result = pg.solve(model)
+    assert_conservation(result)
+    nu = walther_cst(100, 11.2, 60) * 1e-6
+    bearing, churning = result.bearings
+    w1 = W_IN * 1.5
+    # body 1: the input torque holds the mesh's torque and the bearing's own friction
+    load = (result.ports[0].torque - bearing.torque) / 0.030
+    assert bearing.radial_load == pytest.approx(load, rel=1e-9)
+    expected = skf_moment("62", 0.030, 0.062, load, 0.0, w1, nu).total
+    assert bearing.torque == pytest.approx(expected, rel=1e-9)
+    dip = churning_torque(0.090, 0.020, 0.030, 2e-3, w1 / 3, nu, 885.0, teeth=60,
+                          tooth_height=2.25 * 0.003).torque
+    assert churning.torque == pytest.approx(dip, rel=1e-12)
+    assert churning.loss == pytest.approx(dip * w1 / 3, rel=1e-12)
+    labels = [entry["source"] for entry in result.to_dict()["loss_breakdown"]]
+    assert any(label.startswith("churning 2") for label in labels)
+
+
+def test_churning_of_a_planet_is_refused() -> None:
+    raw = load_yaml_file("models/planetary_2kh_sun_to_carrier.yaml")
+    raw["lubricant"] = OIL
+    planet = next(c for c, attrs in raw["components"].items()
+                  if "planet" in str((attrs or {}).get("name", "")).lower())
+    raw["components"][planet]["churning"] = {"immersion": "10 mm", "oil_volume": "1 L",
+                                             "pitch_radius": "20 mm", "face_width": "10 mm"}
+    with pytest.raises(ModelError, match="planet"):
+        model_from_dict(raw)
+
+
+def test_a_map_of_the_dipped_pair_is_its_solves() -> None:
+    """SKF's moment is not proportional to the load: the map solves its points (the grid),
+    each equal to the single solve at that point, both sides of the no-load line."""
+    from powergraph.analyses.efficiency_map import efficiency_map
+
+    model = model_from_dict(DIPPED)
+    grid = efficiency_map(model, [-60.0, 20.0, 90.0], [700.0, 1500.0])
+    for i, rpm in enumerate((700.0, 1500.0)):
+        for j, torque in enumerate((-60.0, 20.0, 90.0)):
+            port = model.outputs[0]
+            point = model.with_port(model.inputs[0].index, speed=rpm * math.pi / 30,
+                                    power=None, torque=None)
+            # the output turns backwards (a 1:3 external pair): +90 N·m on the train
+            # resists it, the map's 90 N·m load; -60 N·m drives it (coasting)
+            point = point.with_port(port.index, torque=torque, power=None)
+            single = pg.solve(point)
+            assert_conservation(single)
+            assert grid.efficiency[i, j] == pytest.approx(single.efficiency, rel=1e-9)
