@@ -89,6 +89,20 @@ class ChurningLaw:
     def at_oil(self, oil: Any) -> "ChurningLaw":
         return dataclasses.replace(self, viscosity=oil.viscosity(), density=oil.density)
 
+    def caveat(self, relative_speed: float, path: str) -> Any:
+        """A warning when the gear runs between the paper's two fits (6000 < Re_c < 9000,
+        interpolated here), None otherwise."""
+        from powergraph.errors import Caveat
+        from powergraph.gears.churning import RE_C_HIGH, RE_C_LOW
+
+        critical = abs(relative_speed) * self.pitch_radius * self.immersion / self.viscosity
+        if not RE_C_LOW < critical < RE_C_HIGH:
+            return None
+        return Caveat(f"the churning runs between Changenet & Velex's low- and high-speed fits "
+                      f"(Re_c = {critical:.0f}, fitted below {RE_C_LOW:.0f} and above "
+                      f"{RE_C_HIGH:.0f}): interpolated between them, which the paper does not "
+                      "give (docs/losses.md)", path, code="churning-transition")
+
     def torque(self, relative_speed: Any) -> Any:
         """The churning torque (N·m) at the gear's speed against the housing (rad/s)."""
         from powergraph.gears.churning import churning_torque

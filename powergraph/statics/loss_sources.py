@@ -180,6 +180,19 @@ def torque_sources(model: Model) -> tuple[LossSource, ...]:
     return found
 
 
+def law_caveats(result: Any) -> tuple:
+    """The warnings of the torque sources' laws at the result's speeds (a law with a
+    ``caveat(relative speed, path)``: e.g. churning between its fits)."""
+    states = {state.node: state for state in getattr(result, "bearings", ())}
+    found = []
+    for source in torque_sources(result.model):
+        state = states.get(source.node)
+        for law in (source.friction, source.drag):
+            if state is not None and hasattr(law, "caveat"):
+                found.append(law.caveat(state.relative_speed, source.path))
+    return tuple(c for c in found if c is not None)
+
+
 def losses(result: Any) -> tuple[tuple[LossSource, float], ...]:
     """Each loss source of ``result``'s model with its loss in ``result`` (W); together
     they are the result's total loss.

@@ -189,6 +189,10 @@ class PowerFlowResult:
         their declared role, an output torque that drives the train, no power passing, a
         machine outside its efficiency map)."""
         own = result_caveats(self)
+        if self.bearings:
+            from powergraph.statics.loss_sources import law_caveats
+
+            own += law_caveats(self)
         if self.thermal is not None:
             own += self.thermal.caveats()
         if self.machines:

@@ -418,3 +418,17 @@ def test_a_map_of_the_dipped_pair_is_its_solves() -> None:
             single = pg.solve(point)
             assert_conservation(single)
             assert grid.efficiency[i, j] == pytest.approx(single.efficiency, rel=1e-9)
+
+
+def test_churning_between_the_two_fits_is_warned() -> None:
+    """Re_c = ω R h / ν: the wheel (R 90 mm, h 30 mm) at 500 rpm in ISO VG 100 at 80 degC
+    lies in 6000…9000 (interpolated, warned); at 40 degC it is below 6000 (no warning)."""
+    from powergraph.model.lubricant import fixed_temperature
+
+    model = model_from_dict(DIPPED)
+    for celsius, warned in ((40, False), (80, True)):
+        result = pg.solve(fixed_temperature(model, 273.15 + celsius))
+        critical = (W_IN / 3) * 0.090 * 0.030 / (walther_cst(100, 11.2, celsius) * 1e-6)
+        assert (6000 < critical < 9000) == warned
+        codes = [c.code for c in result.warnings]
+        assert ("churning-transition" in codes) == warned
