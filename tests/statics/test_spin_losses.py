@@ -428,7 +428,7 @@ def test_churning_between_the_two_fits_is_warned() -> None:
     model = model_from_dict(DIPPED)
     for celsius, warned in ((40, False), (80, True)):
         result = pg.solve(fixed_temperature(model, 273.15 + celsius))
-        critical = (W_IN / 3) * 0.090 * 0.030 / (walther_cst(100, 11.2, celsius) * 1e-6)
+        critical = (W_IN * 1.5 / 3) * 0.090 * 0.030 / (walther_cst(100, 11.2, celsius) * 1e-6)
         assert (6000 < critical < 9000) == warned
         codes = [c.code for c in result.warnings]
         assert ("churning-transition" in codes) == warned
