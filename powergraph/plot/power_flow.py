@@ -44,6 +44,7 @@ INK = "#1f3b5c"
 COLOURS = {"power": "#2c6fad", "zero": "#8a8a8a", "loss": "#b5651d", "loop": "#c0392b"}
 FILLS = {"body": "#e8f0fa", "frame": "#e3e3e3", "mesh": "white", "coupling": "#f1f1f1",
          "bearing": "#fdf3e7", "seal": "#fdf3e7", "drag": "#fdf3e7",
+         "churning": "#fdf3e7",
          "loss": "#fbe9d6", "motor": "white", "generator": "white", "ground": "white"}
 INCH = 72.0
 
@@ -195,7 +196,7 @@ def _boxed(ax, node: NodePlace, box: Box, s: float):
     style = "square,pad=0" if kind == "coupling" else "round,pad=0,rounding_size=3"
     patch = FancyBboxPatch((box.x0, box.y0), box.x1 - box.x0, box.y1 - box.y0,
                            boxstyle=style, fc=FILLS.get(kind, "white"),
-                           ec=COLOURS["loss"] if kind in ("loss", "bearing", "seal", "drag") else INK,
+                           ec=COLOURS["loss"] if kind in ("loss", "bearing", "seal", "drag", "churning") else INK,
                            lw=(1.6 if kind == "frame" else 1.0) * s, zorder=4,
                            hatch="////" if kind == "frame" else None)
     ax.add_patch(patch)

@@ -34,8 +34,8 @@ MOTOR, GENERATOR, LOSS, GROUND = "motor", "generator", "loss", "ground"
 BODY, FRAME = "body", "frame"
 MACHINE, BUS, BATTERY = "machine", "bus", "battery"
 #: Every node kind of the flow graph.
-KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "seal", "drag", MOTOR, GENERATOR, LOSS,
-         GROUND, MACHINE, BUS, BATTERY)
+KINDS = (BODY, FRAME, "mesh", "coupling", "bearing", "seal", "drag", "churning", MOTOR,
+         GENERATOR, LOSS, GROUND, MACHINE, BUS, BATTERY)
 
 
 @total_ordering

@@ -247,7 +247,7 @@ def _kind_from_name(node: str) -> str:
     head = node.split(" ")[0]
     if head in (MOTOR, GENERATOR) or node in (LOSS, GROUND):
         return head
-    if head in ("mesh", "coupling", "bearing", "seal", "drag") and " " in node:
+    if head in ("mesh", "coupling", "bearing", "seal", "drag", "churning") and " " in node:
         return head
     return BODY
 
