@@ -95,12 +95,16 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
     Returns
     -------
     GridSolution
+
+    A train with a heat balance (``thermal:``) is solved point by point: each point
+    settles its own oil temperature, as its single solve does.
     """
     sense = float(np.sign(solve_speeds(model).ratio or 1.0))
     efficiency, power, taken = (np.full(speeds_rpm.shape, np.nan) for _ in range(3))
     verdicts = np.full(speeds_rpm.shape, -1, dtype=np.int8)
     pending = np.ones(speeds_rpm.shape, dtype=bool)
-    for speed_sign in (1.0, -1.0):
+    # a heat balance settles each point's own oil temperature: single solves only
+    for speed_sign in (1.0, -1.0) if model.thermal is None else ():
         for torque_sign in (1.0, -1.0, 0.0):
             group = np.flatnonzero((np.sign(speeds_rpm) == speed_sign)
                                    & (np.sign(torques) == torque_sign))

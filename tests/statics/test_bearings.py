@@ -226,16 +226,18 @@ def test_divergent_bearing_law_is_a_solve_error() -> None:
 def test_models_without_blocks_are_unchanged_and_zero_blocks_change_nothing(path) -> None:
     # A bearing whose friction and drag are zero applies no torque: the solve must be the
     # same, bit for bit, as the model without it (and without any bearing state). A library
-    # model with bearing or drag blocks (models/rv40e.yaml) is taken without them.
+    # model with bearing, drag, SKF or churning blocks or seals is taken without them.
     import yaml
 
     data = yaml.safe_load(path.read_text())
+    data["links"] = [link for link in data["links"] if link["type"] != "seal"]
     for link in data["links"]:
         if link["type"] == "bearing":
-            link.pop("friction", None)
-            link.pop("drag", None)
+            for block in ("friction", "drag", "skf"):
+                link.pop(block, None)
     for component in data["components"].values():
         component.pop("drag", None)
+        component.pop("churning", None)
     model = model_from_dict(data)
     plain = solve(model)
     assert plain.bearings == () and plain.total_loss == (

@@ -80,6 +80,8 @@ HAND_TESTED = {
     "ravigneaux_4speed.yaml": "tests/statics/test_modes.py::test_published_and_closed_form_ratios",
     "lepelletier_6speed.yaml": "tests/statics/test_modes.py::test_published_and_closed_form_ratios",
     "zf8hp_8speed.yaml": "tests/statics/test_modes.py::test_published_and_closed_form_ratios",
+    "oil_bath_reducer.yaml": "tests/statics/test_spin_losses.py::"
+                             "test_the_oil_bath_reducer_is_its_laws_at_its_oil_temperature",
     "ths2_power_split.yaml": "tests/statics/test_machines.py::"
                              "test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation",
 }

@@ -432,3 +432,33 @@ def test_churning_between_the_two_fits_is_warned() -> None:
         assert (6000 < critical < 9000) == warned
         codes = [c.code for c in result.warnings]
         assert ("churning-transition" in codes) == warned
+
+
+def test_the_oil_bath_reducer_is_its_laws_at_its_oil_temperature() -> None:
+    """models/oil_bath_reducer.yaml by hand: z 20/60, so the wheel turns at −1500/3 rpm;
+    the two seals lose 7.69e-6·d²·n (30 mm at 1500 rpm, 40 mm at 500 rpm); the wheel
+    churns its law's torque at 500 rpm; the mesh loses its virtual power times 1 − η
+    (an external pair on the housing: the virtual power is the power the pinion gives the
+    mesh, input power minus the pinion's own bearing and seal); the balance closes, and the
+    oil settles where the total loss is 18 W/(m² K) · 0.25 m² · (T − 20 °C)."""
+    from powergraph.gears.churning import churning_torque
+
+    model = pg.load_model("models/oil_bath_reducer.yaml")
+    result = pg.solve(model)
+    assert_conservation(result)
+    w1 = 1500 * math.pi / 30
+    assert result.kinematics.speed("2") == pytest.approx(-w1 / 3, rel=1e-12)
+    by = {s.node: w for s, w in losses(result)}
+    assert by["seal 1-0"] == pytest.approx(7.69e-6 * 30 ** 2 * 1500, rel=1e-12)
+    assert by["seal 2-0"] == pytest.approx(7.69e-6 * 40 ** 2 * 500, rel=1e-12)
+    temperature = result.thermal.temperature
+    nu = walther_cst(100, 11.2, temperature - 273.15) * 1e-6
+    dip = churning_torque(0.090, 0.020, 0.030, 2e-3, w1 / 3, nu, 885.0, teeth=60,
+                          tooth_height=2.25 * 0.003).torque
+    assert by["churning 2"] == pytest.approx(dip * w1 / 3, rel=1e-9)
+    mesh = result.element(0)
+    given = 5000.0 - by["bearing 1-0"] - by["seal 1-0"]
+    assert mesh.carrier_frame_power == pytest.approx(given, rel=1e-9)
+    assert by["links[0] mesh 1-2"] == pytest.approx(given * (1 - mesh.efficiency), rel=1e-9)
+    assert result.total_loss == pytest.approx(18 * 0.25 * (temperature - 293.15), rel=1e-6)
+    assert result.output_power == pytest.approx(5000.0 - sum(by.values()), rel=1e-12)
