@@ -189,6 +189,9 @@ def _path_of_contact(g: MeshGeometry, strict: bool) -> PathOfContact:
     ra1 = r1 + g.module * (g.addendum + g.shift_1)
     ra2 = r2 + sign * g.module * (g.addendum + sign * g.shift_2)
     rw1, rw2 = rb1 / math.cos(alpha_w), rb2 / math.cos(alpha_w)
+    if ra1 <= rb1:
+        raise ModelError(f"the pinion's tip circle (r {ra1:.4g} mm) lies inside its base "
+                         f"circle (r {rb1:.4g} mm): it has no involute flank to mesh with")
     tip_1 = math.sqrt(ra1 ** 2 - rb1 ** 2) - rw1 * math.sin(alpha_w)
     if ra2 <= rb2:
         raise ModelError(f"gear 2's tip circle (r {ra2:.4g} mm) lies inside its base circle "

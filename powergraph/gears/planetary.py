@@ -168,6 +168,29 @@ def undercut_limit(pressure_angle_deg: float = 20.0, shift: float = 0.0,
     return 2.0 * (addendum - shift) * math.cos(beta) / math.sin(alpha_t) ** 2
 
 
+def undercut_gears(pair: Any) -> list[tuple[int, int, float]]:
+    """``(gear, teeth, limit)`` of each external gear of an involute ``pair`` (a
+    :class:`~powergraph.gears.mesh_loss.MeshGeometry`; gear 1 the pinion, 2 the wheel)
+    that a rack cuts with undercut: fewer teeth than :func:`undercut_limit` at its shift.
+
+    >>> from powergraph.gears.mesh_loss import MeshGeometry
+    >>> undercut_gears(MeshGeometry(14, 40))[0][:2]               # 14 < 2/sin²20° = 17.1
+    (1, 14)
+    >>> undercut_gears(MeshGeometry(14, 40, shift_1=0.2))         # 14 ≥ 2·0.8/sin²20°
+    []
+    """
+    sides = [(1, pair.teeth_1, pair.shift_1)]
+    if not pair.internal:
+        sides.append((2, pair.teeth_2, pair.shift_2))
+    out = []
+    for gear, teeth, shift in sides:
+        limit = undercut_limit(pair.pressure_angle_deg, shift, pair.addendum,
+                               pair.helix_angle_deg)
+        if teeth < limit:
+            out.append((gear, teeth, limit))
+    return out
+
+
 def working_centre_distance(teeth_1: int, teeth_2: int, internal: bool, module: float,
                             pressure_angle_deg: float = 20.0, helix_angle_deg: float = 0.0,
                             shift_1: float = 0.0, shift_2: float = 0.0) -> float:
@@ -192,3 +215,61 @@ def working_centre_distance(teeth_1: int, teeth_2: int, internal: bool, module: 
         return reference
     inv_w = involute(alpha_t) + 2 * math.tan(alpha_n) * shifts / (teeth_1 + sign * teeth_2)
     return reference * math.cos(alpha_t) / math.cos(inverse_involute(inv_w))
+
+
+#: Two working centre distances of one planet are one distance when they differ by at most
+#: this many modules (docs/feasibility.md): 1 µm at module 1. A planet that far off one
+#: mesh's working distance changes that mesh's normal backlash by 2·δ·sin α_w ≈ 0.0007·m,
+#: under 2 % of the smallest backlash recommended (ISO/TR 10064-2: (2/3)(0.06 + 0.0005 a +
+#: 0.03 m) mm, at least 40 µm); it is the step of a shift coefficient written to three
+#: decimals (``a_w`` moves by about ``m·Δx``), so a set whose shifts were rounded so agrees,
+#: and a shift wrong in its second decimal (0.01·m) does not.
+CENTRE_TOLERANCE = 1e-3
+
+
+def centre_tolerance(module: float) -> float:
+    """How far apart (mm) two working centre distances of pairs of ``module`` (mm; the
+    smaller of two) may be and still be one: :data:`CENTRE_TOLERANCE` modules.
+
+    >>> centre_tolerance(1.0), centre_tolerance(2.5)
+    (0.001, 0.0025)
+    """
+    return CENTRE_TOLERANCE * module
+
+
+def shift_sum(teeth_1: int, teeth_2: int, internal: bool, module: float,
+              centre_distance: float, pressure_angle_deg: float = 20.0,
+              helix_angle_deg: float = 0.0) -> float:
+    """The profile shift that puts an involute pair at the working centre distance
+    ``centre_distance`` (mm): ``x_2 + x_1`` for an external pair, ``x_2 − x_1`` for an
+    internal gear 2 (the inverse of :func:`working_centre_distance`). With the reference
+    ``a = m_t (z_2 ± z_1)/2``: ``cos α_w = a cos α_t / a_w`` and
+    ``x_2 ± x_1 = (inv α_w − inv α_t)(z_2 ± z_1) / (2 tan α_n)``.
+
+    Raises ModelError when ``centre_distance`` is not beyond the base circles' distance
+    ``a cos α_t`` (no working pressure angle reaches it).
+
+    >>> round(shift_sum(15, 48, True, 1.0, working_centre_distance(
+    ...     15, 48, True, 1.0, shift_1=0.2, shift_2=0.874)), 12)            # 0.874 − 0.2
+    0.674
+    >>> shift_sum(20, 40, False, 2.0, 60.0)
+    0.0
+    """
+    from powergraph.errors import ModelError
+    from powergraph.gears.involute import involute
+
+    sign = -1.0 if internal else 1.0
+    beta = math.radians(helix_angle_deg)
+    alpha_n = math.radians(pressure_angle_deg)
+    alpha_t = math.atan(math.tan(alpha_n) / math.cos(beta))
+    teeth = abs(teeth_2 + sign * teeth_1)
+    reference = module / math.cos(beta) * teeth / 2
+    base = reference * math.cos(alpha_t)
+    if not centre_distance > base:
+        raise ModelError(f"a working centre distance of {centre_distance:.4f} mm is not "
+                         f"beyond the base circles' {base:.4f} mm (a·cos α_t): no profile "
+                         "shift puts the pair there")
+    if centre_distance == reference:
+        return 0.0
+    alpha_w = math.acos(base / centre_distance)
+    return (involute(alpha_w) - involute(alpha_t)) * teeth / (2 * math.tan(alpha_n))

@@ -4,7 +4,9 @@ A model can be valid and solvable and still describe gears that cannot be put to
 planets that cannot share the axis of their sun and ring, that cannot be assembled at equal
 spacing, that collide with their neighbours; a ring gear not marked ``internal`` (its
 ratio then has the wrong sign); a planet meshing with and without its carrier; a ring
-meshing a planet without a carrier (read as a fixed-axis pair); an undercut pinion.
+meshing a planet without a carrier (read as a fixed-axis pair); an undercut pinion; a
+gear given two tooth profiles by its meshes' geometry blocks (a planet's shift in its sun
+pair must be its shift in its ring pair).
 :func:`feasibility_caveats` finds them; validation adds them to
 ``Model.warnings`` (the answer of a solve stands, the designer should know), ``powergraph
 check`` prints them and ``--strict`` refuses them. The conditions themselves are those of
@@ -40,8 +42,9 @@ import numpy as np
 
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
-from powergraph.model.feasibility_axes import (coaxiality, gear_module, mesh_geometry,
-                                               mesh_centre, rings_without_carrier)
+from powergraph.model.feasibility_axes import (coaxiality, gear_module, geometry_modules,
+                                               mesh_geometry, mesh_centre,
+                                               rings_without_carrier, stated_only)
 
 
 class PlanetarySet:
@@ -71,11 +74,13 @@ def feasibility_caveats(model: Any) -> tuple[Caveat, ...]:
     caveats: list[Caveat] = []
     sets = _planetary_sets(model)
     phased = {model.body_of[link.carrier] for link in model.meshes}   # bodies carrying a mesh
+    modules = geometry_modules(model)
     for pset in sets.values():
-        caveats += _set_caveats(model, pset, phased)
+        caveats += _set_caveats(model, pset, phased, modules)
     carriers = _planet_carrier(model, sets)
     caveats += carriers
     caveats += rings_without_carrier(model, {c.path.split(".")[0] for c in carriers})
+    caveats += _gear_profiles(model)
     caveats += _undercut(model)
     return tuple(caveats)
 
@@ -130,27 +135,29 @@ def _central_meshes(model: Any, pset: PlanetarySet, body: str) -> list[tuple]:
     return out
 
 
-def _set_caveats(model: Any, pset: PlanetarySet, phased: set) -> list[Caveat]:
+def _set_caveats(model: Any, pset: PlanetarySet, phased: set, modules: dict
+                 ) -> list[Caveat]:
     caveats: list[Caveat] = []
     wrong_rings: set[str] = set()
     centres: dict[str, tuple[float, float | None]] = {}
     for body in sorted(pset.planets):
         meshes = _central_meshes(model, pset, body)
-        found, teeth, mm = coaxiality(meshes)
+        found, teeth, mm = coaxiality(meshes, modules)
         caveats += found
         if any(c.code == "ring-not-internal" for c in found):
             wrong_rings.add(body)
         if teeth is not None and not found:
             centres[body] = (teeth, mm)
             caveats += _clearance(model, pset, body, teeth, mm)
-    caveats += _planets_meet(model, pset, centres)
+    caveats += _planets_meet(model, pset, centres, modules)
     for cluster in _clusters(model, pset):
         if not wrong_rings.intersection(cluster):
             caveats += _assembly(model, pset, cluster, bool(phased.intersection(cluster)))
     return caveats
 
 
-def _planets_meet(model: Any, pset: PlanetarySet, centres: dict) -> list[Caveat]:
+def _planets_meet(model: Any, pset: PlanetarySet, centres: dict, modules: dict
+                  ) -> list[Caveat]:
     """Two meshing planets on their centre distances from the axis can reach each other
     (:func:`planetary.planets_meet`): in mm when all three distances are known."""
     out, seen = [], set()
@@ -162,7 +169,7 @@ def _planets_meet(model: Any, pset: PlanetarySet, centres: dict) -> list[Caveat]
                     or not _toothed(link, model):
                 continue
             seen.add(link.index)
-            pair = mesh_centre(link, a, b)
+            pair = mesh_centre(link, a, b, modules)
             (ta, ma), (tb, mb) = centres[ba], centres[bb]
             mm = None not in (ma, mb, pair.mm)
             da, db, reach = (ma, mb, pair.mm) if mm else (ta, tb, pair.teeth)
@@ -213,14 +220,22 @@ def _clearance(model: Any, pset: PlanetarySet, body: str, teeth: float,
 
 
 def _tip(gear: Any, links: Any, model: Any) -> tuple[float | None, float]:
-    """Module and ``h_a* + x`` of ``gear``: from a mesh geometry that names it, else its
-    own geometry's module and an unshifted addendum of one module."""
+    """Module and ``h_a* + x`` of ``gear``: from a mesh geometry that names it (unshifted
+    when it gives a ``centre_distance`` and no shifts), else its own geometry's module and
+    an unshifted addendum of one module."""
     for link in links:
         g = mesh_geometry(link)
         if g is not None and gear.id in link.between:
-            first = _pinion(link, model) == gear.id
-            return g.module, g.addendum + (g.shift_1 if first else g.shift_2)
+            return g.module, g.addendum + (_shift(g, gear.id, link, model) or 0.0)
     return gear_module(gear), 1.0
+
+
+def _shift(g: Any, gear: str, link: Any, model: Any) -> float | None:
+    """The profile shift a mesh geometry gives ``gear``: None without shifts (a
+    ``centre_distance`` alone)."""
+    if stated_only(g):
+        return None
+    return g.shift_1 if _pinion(link, model) == gear else g.shift_2
 
 
 def _pinion(link: Any, model: Any) -> str:
@@ -333,9 +348,45 @@ def _planet_carrier(model: Any, sets: dict[str, PlanetarySet]) -> list[Caveat]:
     return out
 
 
+def _gear_profiles(model: Any) -> list[Caveat]:
+    """A gear meshing twice has one profile: every mesh geometry naming it (and its own
+    ``geometry``'s module) gives it the same module, pressure angle, |helix angle|,
+    addendum and shift (a ``centre_distance`` without shifts gives no shift)."""
+    seen: dict[str, dict[str, tuple[float, str]]] = {}
+    for component in model.components.values():
+        module = gear_module(component)
+        if module is not None:
+            seen[component.id] = {"module": (module, f"components.{component.raw_id}"
+                                                     ".geometry")}
+    out = []
+    for link in model.meshes:
+        g = mesh_geometry(link)
+        if g is None:
+            continue
+        for gear in link.between:
+            values = {"module": g.module, "pressure angle": g.pressure_angle_deg,
+                      "helix angle": abs(g.helix_angle_deg), "addendum": g.addendum,
+                      "shift": _shift(g, gear, link, model)}
+            known = seen.setdefault(gear, {})
+            for name, value in values.items():
+                if value is None:
+                    continue
+                if name not in known:
+                    known[name] = (value, f"{link.path}.geometry")
+                elif not math.isclose(value, known[name][0], rel_tol=1e-9, abs_tol=1e-12):
+                    out.append(Caveat(
+                        f"gear {gear} has {name} {known[name][0]:g} in {known[name][1]} "
+                        f"but {value:g} here: one gear has one tooth profile (module, "
+                        "pressure angle, helix, addendum and profile shift)",
+                        f"{link.path}.geometry", "gear-profile"))
+                    break
+    return out
+
+
 def _undercut(model: Any) -> list[Caveat]:
     """External gears of a mesh with a ``geometry`` block, cut by a rack: ``z`` below
-    ``2 (h_a* − x) cos β / sin² α_t`` teeth is undercut."""
+    ``2 (h_a* − x) cos β / sin² α_t`` teeth is undercut. A ``centre_distance`` without
+    shifts: undercut when no split of its shift sum that meshes avoids it (one caveat)."""
     out = []
     for link in model.meshes:
         g = mesh_geometry(link)
@@ -343,18 +394,26 @@ def _undercut(model: Any) -> list[Caveat]:
             continue
         first = _pinion(link, model)
         second = link.between[1] if first == link.between[0] else link.between[0]
-        sides = [(first, g.teeth_1, g.shift_1)]
-        if not g.internal:
-            sides.append((second, g.teeth_2, g.shift_2))
-        for gear, z, x in sides:
-            limit = planetary.undercut_limit(g.pressure_angle_deg, x, g.addendum,
-                                             g.helix_angle_deg)
-            if z < limit:
-                need = g.addendum - z / planetary.undercut_limit(
-                    g.pressure_angle_deg, 0.0, 1.0, g.helix_angle_deg)
+        names = {1: first, 2: second}
+        if stated_only(g):                       # a centre_distance without shifts
+            found = planetary.undercut_gears(g.split)
+            if found:
+                side, z, limit = found[0]
+                what = "x2 − x1" if g.internal else "x1 + x2"
                 out.append(Caveat(
-                    f"gear {gear} ({z} teeth, shift {x:g}) is undercut when cut by a rack: "
-                    f"fewer than 2·(h_a* − x)·cos β/sin²α_t = {limit:.4g} teeth at "
-                    f"{g.pressure_angle_deg:g}°; give it a shift of at least {need:.3f}",
-                    f"{link.path}.geometry", "undercut"))
+                    f"every split of the shift sum {what} = {g.shift_sum:.4f} that puts the "
+                    f"pair at its centre_distance {g.centre_distance:g} mm and meshes leaves "
+                    f"a gear undercut by a rack (e.g. shifts {g.split.shift_1:g}, "
+                    f"{g.split.shift_2:.4g}: gear {names[side]}, {z} teeth, needs "
+                    f"{limit:.4g} at that shift)", f"{link.path}.geometry", "undercut"))
+            continue
+        for side, z, limit in planetary.undercut_gears(g):
+            gear, x = names[side], (g.shift_1 if side == 1 else g.shift_2)
+            need = g.addendum - z / planetary.undercut_limit(
+                g.pressure_angle_deg, 0.0, 1.0, g.helix_angle_deg)
+            out.append(Caveat(
+                f"gear {gear} ({z} teeth, shift {x:g}) is undercut when cut by a rack: "
+                f"fewer than 2·(h_a* − x)·cos β/sin²α_t = {limit:.4g} teeth at "
+                f"{g.pressure_angle_deg:g}°; give it a shift of at least {need:.3f}",
+                f"{link.path}.geometry", "undercut"))
     return out

@@ -20,19 +20,19 @@ from typing import Any, NamedTuple
 from powergraph.errors import Caveat
 from powergraph.gears import planetary
 
-#: Working centre distances (mm) of one planet agree within this fraction.
-CENTRE_TOLERANCE = 2e-4
-
 
 class _Centre(NamedTuple):
     """One central mesh of a planet: its centre distance in half-modules (one module, no
-    shift) and in mm when a module is known (working, with the mesh's shifts)."""
+    shift) and in mm when a module is known (working, with the mesh's shifts, or its
+    stated operating ``centre_distance``), with that module and where the mm come from."""
 
     link: Any
     central: Any
     planet: Any
     teeth: int
     mm: float | None
+    module: float | None = None
+    source: str = ""
 
     def words(self) -> str:
         if self.central.internal:
@@ -40,36 +40,72 @@ class _Centre(NamedTuple):
         return f"sun {self.central.teeth} + planet {self.planet.teeth} = {self.teeth}"
 
 
-def mesh_centre(link: Any, central: Any, planet: Any) -> _Centre:
-    """The centre distance of a mesh (``central`` may be another planet, external)."""
+def mesh_centre(link: Any, central: Any, planet: Any, modules: dict | None = None
+                ) -> _Centre:
+    """The centre distance of a mesh (``central`` may be another planet, external). A mesh
+    without a geometry block is unshifted, with its gears' module: a gear's own
+    ``geometry`` gives it, else ``modules`` (gear id -> module, from other meshes' blocks:
+    :func:`geometry_modules`)."""
     teeth = planetary.centre_distance(central.teeth, planet.teeth, central.internal)
     geometry = mesh_geometry(link)
-    if geometry is not None:
-        mm = planetary.working_centre_distance(
-            geometry.teeth_1, geometry.teeth_2, geometry.internal, geometry.module,
-            geometry.pressure_angle_deg, geometry.helix_angle_deg, geometry.shift_1,
-            geometry.shift_2)
-    else:
-        module = gear_module(central) or gear_module(planet)
-        mm = None if module is None else module * teeth / 2
-    return _Centre(link, central, planet, teeth, mm)
+    if geometry is None:
+        modules = modules or {}
+        module = (gear_module(central) or gear_module(planet) or modules.get(central.id)
+                  or modules.get(planet.id))
+        if module is None:
+            return _Centre(link, central, planet, teeth, None)
+        return _Centre(link, central, planet, teeth, module * teeth / 2, module,
+                       f"unshifted, module {module:g}")
+    stated = getattr(geometry, "centre_distance", None)
+    if stated is not None:
+        return _Centre(link, central, planet, teeth, stated, geometry.module,
+                       "its centre_distance")
+    mm = planetary.working_centre_distance(
+        geometry.teeth_1, geometry.teeth_2, geometry.internal, geometry.module,
+        geometry.pressure_angle_deg, geometry.helix_angle_deg, geometry.shift_1,
+        geometry.shift_2)
+    return _Centre(link, central, planet, teeth, mm, geometry.module,
+                   f"shifts {geometry.shift_1:g}, {geometry.shift_2:g}")
 
 
 def mesh_geometry(link: Any) -> Any:
-    """The involute geometry of a mesh (its ``geometry`` block, alone or with friction)."""
+    """The involute geometry of a mesh (its ``geometry`` block, alone or with friction): a
+    :class:`~powergraph.gears.mesh_loss.MeshGeometry`, or an
+    :class:`~powergraph.model.block_friction.OperatingGeometry` (a ``centre_distance``
+    without shifts)."""
     if "geometry" in link.blocks:
         return link.blocks["geometry"]
     return getattr(link.blocks.get("friction"), "geometry", None)
+
+
+def stated_only(geometry: Any) -> bool:
+    """The geometry gives an operating ``centre_distance`` and no shifts (an
+    :class:`~powergraph.model.block_friction.OperatingGeometry`: a shift sum, no split)."""
+    return hasattr(geometry, "shift_sum")
 
 
 def gear_module(component: Any) -> float | None:
     return getattr(component.geometry, "module", None)
 
 
-def coaxiality(meshes: list[tuple]) -> tuple[list[Caveat], float | None, float | None]:
+def geometry_modules(model: Any) -> dict[str, float]:
+    """Gear id -> the module of the first mesh geometry block naming the gear."""
+    modules: dict[str, float] = {}
+    for link in model.meshes:
+        geometry = mesh_geometry(link)
+        if geometry is not None:
+            for gear in link.between:
+                modules.setdefault(gear, geometry.module)
+    return modules
+
+
+def coaxiality(meshes: list[tuple], modules: dict | None = None
+               ) -> tuple[list[Caveat], float | None, float | None]:
     """Caveats on one planet's central meshes ``(link, central gear, planet gear)``, and its
-    centre distance (half-modules, and mm when every mesh gives a module) when they agree."""
-    centres = [mesh_centre(*m) for m in meshes]
+    centre distance (half-modules, and mm when every mesh gives a module) when they agree:
+    in mm within :func:`planetary.centre_tolerance` of the smallest module. ``modules``:
+    as :func:`mesh_centre`."""
+    centres = [mesh_centre(*m, modules) for m in meshes]
     if not centres:
         return [], None, None
     rings = _rings_not_internal(centres)
@@ -77,17 +113,24 @@ def coaxiality(meshes: list[tuple]) -> tuple[list[Caveat], float | None, float |
         return rings, None, None
     if all(c.mm is not None for c in centres):
         spread = max(c.mm for c in centres) - min(c.mm for c in centres)
-        if spread <= CENTRE_TOLERANCE * max(c.mm for c in centres):
+        module = min(c.module for c in centres)
+        tolerance = planetary.centre_tolerance(module)
+        if spread <= tolerance:
             return [], float(centres[0].teeth), centres[0].mm
-        text = ", ".join(f"{place([c.link])} {c.mm:.4g} mm" for c in centres)
+        text = "; ".join(f"{place([c.link])} {c.mm:.4f} mm ({c.source})" for c in centres)
         return [Caveat(f"the working centre distances of planet {_planet_name(centres)}'s "
-                       f"meshes differ ({text}): the planets cannot share the axis of "
-                       "the central gears", place([c.link for c in centres]),
-                       "coaxiality")], None, None
+                       f"meshes differ: {text}; {spread * 1e3:.1f} µm apart, more than "
+                       f"{planetary.CENTRE_TOLERANCE:g} module = {tolerance * 1e3:.3g} µm: "
+                       "the planets cannot share the axis of the central gears",
+                       place([c.link for c in centres]), "coaxiality")], None, None
     if len({c.teeth for c in centres}) == 1:
         return [], float(centres[0].teeth), None
     return [Caveat(_coaxiality_words(centres), place([c.link for c in centres]),
                    "coaxiality")], None, None
+
+
+_UNSHIFTED = ("(one module, no profile shift; if the set is profile-shifted, give each of "
+              "these meshes a geometry with its shifts or its centre_distance)")
 
 
 def _coaxiality_words(centres: list[_Centre]) -> str:
@@ -97,13 +140,11 @@ def _coaxiality_words(centres: list[_Centre]) -> str:
         sun, ring = sorted(centres, key=lambda c: c.central.internal)
         zs, zp, zr = sun.central.teeth, sun.planet.teeth, ring.central.teeth
         return (f"sun {zs} + 2 × planet {zp} = {zs + 2 * zp} ≠ ring {zr}: the planets "
-                "cannot share the axis of sun and ring (one module, no profile shift; give "
-                "the meshes' geometry with their shifts if they are shifted)")
+                f"cannot share the axis of sun and ring {_UNSHIFTED}")
     text = "; ".join(c.words() for c in centres)
     return (f"the centre distances of planet {_planet_name(centres)}'s meshes differ, in "
             f"half-modules: {text}: the planets cannot share the axis of the central gears "
-            "(one module, no profile shift; give the meshes' geometry with their shifts if "
-            "they are shifted)")
+            f"{_UNSHIFTED}")
 
 
 def _planet_name(centres: list[_Centre]) -> str:

@@ -132,6 +132,11 @@ _MESH_GEOMETRY = {
                    "x-expect": "a list of two numbers (pinion, wheel)"},
         "addendum": {"type": "number", "exclusiveMinimum": 0, "maximum": 2, "default": 1,
                      "title": "addendum", "description": "Addendum coefficient h_a*."},
+        "centre_distance": _length("centre_distance",
+                                   "Operating (working) centre distance of the pair as "
+                                   "built. With shifts (or friction) it must be theirs; "
+                                   "without, it fixes the pair's shift sum "
+                                   "(docs/feasibility.md)."),
     },
     "additionalProperties": False,
     "required": ["module"],

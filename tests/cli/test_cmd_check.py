@@ -33,8 +33,8 @@ def test_check_prints_each_warning_after_the_ok_line_and_exits_0(tmp_path, capsy
     assert lines[0].startswith(f"{model}: ok") and err == ""
     assert lines[1:] == ["warning: links[0..1]: sun 23 + 2 × planet 24 = 71 ≠ ring 72: the "
                          "planets cannot share the axis of sun and ring (one module, no "
-                         "profile shift; give the meshes' geometry with their shifts if they "
-                         "are shifted)"]
+                         "profile shift; if the set is profile-shifted, give each of these "
+                         "meshes a geometry with its shifts or its centre_distance)"]
 
 
 def test_check_strict_refuses_with_one_line_per_warning(tmp_path, capsys) -> None:
@@ -69,3 +69,32 @@ def test_solve_strict_refuses_before_solving(tmp_path, capsys) -> None:
     assert json.loads(capsys.readouterr().out)["dof"] == 1
     assert main(["solve", "--strict", "--json", SOUND]) == 0
     assert json.loads(capsys.readouterr().out)["dof"] == 1
+
+
+def profile_shifted(tmp_path: Path, sun_shift: float) -> str:
+    """The bundled 2K-H with sun 22, planet 24, ring 71 at module 2 mm: 46 and 47 mm as
+    standard gears; the sun pair's shifts [x_s, 0.2] and the ring pair's [0.2, 0.2] put
+    both at 47 mm for x_s + 0.2 = (inv α_w − inv 20°)·46/(2 tan 20°) = 0.53824 with
+    cos α_w = 46 cos 20°/47 (x_s = 0.338 as drawn); x_s = 0.3 puts the sun pair at 46.9331 mm."""
+    doc = yaml.safe_load(Path(SOUND).read_text())
+    doc["components"]["sun"]["teeth"] = 22
+    doc["components"]["ring"]["teeth"] = 71
+    doc["links"][0]["geometry"] = {"module": 2, "shifts": [sun_shift, 0.2]}
+    doc["links"][1]["geometry"] = {"module": 2, "shifts": [0.2, 0.2]}
+    path = tmp_path / f"shifted_{sun_shift}.yaml"
+    path.write_text(yaml.safe_dump(doc))
+    return str(path)
+
+
+def test_check_strict_takes_a_set_its_shifts_make_coaxial(tmp_path, capsys) -> None:
+    model = profile_shifted(tmp_path, 0.338)
+    assert main(["check", "--strict", model]) == 0
+    out, err = capsys.readouterr()
+    assert err == "" and len(out.splitlines()) == 1 and out.startswith(f"{model}: ok")
+    assert main(["check", "--strict", profile_shifted(tmp_path, 0.3)]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and err.splitlines() == [
+        "powergraph: error: links[0..1]: the working centre distances of planet planet's "
+        "meshes differ: links[0] 46.9331 mm (shifts 0.3, 0.2); links[1] 47.0000 mm (shifts "
+        "0.2, 0.2); 66.9 µm apart, more than 0.001 module = 2 µm: the planets cannot share "
+        "the axis of the central gears"]

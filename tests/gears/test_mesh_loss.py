@@ -114,6 +114,8 @@ def test_positive_shift_moves_contact_into_recess() -> None:
     (MeshGeometry(20, 40, addendum=0.3), "contact ratio"),
     (MeshGeometry(20, 15, internal=True), "more teeth"),
     (MeshGeometry(20, 40, module=float("nan")), "module"),
+    # x1 = −2: r_a1 = 7.5 − 1 = 6.5 mm inside r_b1 = 7.5 cos 20° = 7.05 mm
+    (MeshGeometry(15, 48, internal=True, shift_1=-2.0), "pinion's tip circle"),
 ])
 def test_impossible_pairs_are_refused(geometry: MeshGeometry, fragment: str) -> None:
     with pytest.raises(ModelError, match=fragment):

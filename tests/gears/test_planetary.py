@@ -9,9 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from powergraph.gears.planetary import (assembles, centre_distance, neighbours_clear,
-                                        relative_turns, undercut_limit,
-                                        working_centre_distance)
+from powergraph.errors import ModelError
+from powergraph.gears.planetary import (assembles, centre_distance, centre_tolerance,
+                                        neighbours_clear, relative_turns, shift_sum,
+                                        undercut_limit, working_centre_distance)
 
 
 def one(value: int) -> np.ndarray:
@@ -74,3 +75,27 @@ def test_working_centre_distance() -> None:
     assert working_centre_distance(20, 40, False, 2.0, shift_1=0.25, shift_2=0.25) == \
         pytest.approx(60 * math.cos(math.radians(20)) / math.cos(math.radians(22.3167)),
                       rel=1e-5)
+
+
+def test_shift_sum_inverts_the_working_centre_distance() -> None:
+    # 20/40 at 60.9465 mm (the example above): cos α_w = 60 cos 20°/60.9465 = 0.925113,
+    # α_w = 22.3167°, x1 + x2 = (0.0209706 − 0.0149044)·60/(2 tan 20°) = 0.5
+    assert shift_sum(20, 40, False, 2.0, 60.9465) == pytest.approx(0.5, abs=1e-4)
+    # an internal pair gives x2 − x1; helical and other pressure angles round-trip
+    for args in ((15, 48, True, 1.0, 20.0, 0.0, 0.2, 0.874),
+                 (17, 23, False, 3.0, 25.0, 15.0, -0.1, 0.45),
+                 (23, 85, True, 2.5, 20.0, 30.0, 0.3, -0.2)):
+        z1, z2, internal, m, alpha, beta, x1, x2 = args
+        a_w = working_centre_distance(z1, z2, internal, m, alpha, beta, x1, x2)
+        expected = x2 - x1 if internal else x1 + x2
+        assert shift_sum(z1, z2, internal, m, a_w, alpha, beta) == pytest.approx(expected,
+                                                                                 abs=1e-9)
+    assert shift_sum(20, 40, False, 2.0, 60.0) == 0.0
+    # inside the base circles' 60 cos 20° = 56.38 mm no working pressure angle exists
+    with pytest.raises(ModelError, match="base circles' 56.3816 mm"):
+        shift_sum(20, 40, False, 2.0, 56.0)
+
+
+def test_centre_tolerance_is_a_thousandth_of_a_module() -> None:
+    assert centre_tolerance(1.0) == pytest.approx(1e-3)          # 1 µm at module 1
+    assert centre_tolerance(4.0) == pytest.approx(4e-3)

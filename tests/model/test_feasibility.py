@@ -2,10 +2,12 @@
 test) and on one that does not; every bundled model is feasible (docs/feasibility.md)."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
 
+from powergraph.errors import ModelError
 from powergraph.model import load_model, model_from_dict
 
 MODELS = sorted((Path(__file__).resolve().parents[2] / "models").glob("*.yaml"))
@@ -100,7 +102,7 @@ def test_shifted_meshes_compare_working_centre_distances() -> None:
     assert "ring 51 − planet 16 = 35; ring 48 − planet 15 = 33" in message
     doc["links"][1]["geometry"] = {"module": 1, "shifts": [0.2, 0.6]}
     code, path, message = caveats(doc)[0]
-    assert (code, path) == ("coaxiality", "links[0..1]") and "17.1 mm" in message
+    assert (code, path) == ("coaxiality", "links[0..1]") and "links[0] 17.1003 mm" in message
 
 
 def test_double_planets_must_reach_each_other() -> None:
@@ -308,3 +310,137 @@ def test_khv_stages_are_not_2kh_sets() -> None:
            "ports": [{"component": "H", "role": "input"}, {"component": "out", "role": "output"}]}
     doc["components"]["H"] = {}
     assert codes(doc) == []
+
+
+# --- profile-shifted sets -----------------------------------------------------------------
+# Sun 22, planet 24, ring 71 (3 planets, (22 + 71)/3 = 31 assembles) at module 2 mm: as
+# standard gears the sun pair sits at 2·(22 + 24)/2 = 46 mm, the ring pair at
+# 2·(71 − 24)/2 = 47 mm. Shifted to a common 47 mm: the ring pair keeps its standard
+# distance with x_r − x_p = 0; the sun pair needs cos α_w = 46 cos 20°/47 = 0.919699,
+# α_w = 23.1179°, and x_s + x_p = (inv α_w − inv 20°)·46/(2 tan 20°)
+# = (0.0234218 − 0.0149044)·46/0.727940 = 0.53824. With x_p = x_r = 0.2: x_s = 0.33824,
+# which a drawing writes 0.338 (then 0.41 µm off 47 mm, within 0.001·m = 2 µm).
+def inv(angle: float) -> float:
+    return math.tan(angle) - angle
+
+
+def shifted(sun: dict, ring: dict) -> dict:
+    doc = simple(22, 24, 71)
+    doc["links"][0]["geometry"], doc["links"][1]["geometry"] = sun, ring
+    return doc
+
+
+def test_shift_sum_from_the_formulas() -> None:
+    alpha = math.radians(20)
+    cos_w = 46 * math.cos(alpha) / 47
+    alpha_w = math.acos(cos_w)
+    total = (inv(alpha_w) - inv(alpha)) * 46 / (2 * math.tan(alpha))
+    assert (round(cos_w, 6), round(math.degrees(alpha_w), 4)) == (0.919699, 23.1179)
+    assert (round(inv(alpha_w), 7), round(inv(alpha), 7)) == (0.0234218, 0.0149044)
+    assert total == pytest.approx(0.53824, abs=1e-5)
+
+
+def test_a_standard_coaxial_set_in_mm() -> None:
+    # 24/24/72 at module 2: 2·(24 + 24)/2 = 48 = 2·(72 − 24)/2 mm, unshifted or stated
+    doc = simple(24, 24, 72)
+    doc["links"][0]["geometry"] = doc["links"][1]["geometry"] = {"module": 2}
+    assert codes(doc) == []
+    doc["links"][0]["geometry"] = doc["links"][1]["geometry"] = {
+        "module": 2, "centre_distance": "48 mm"}
+    model = model_from_dict(doc)
+    assert model.warnings == ()
+    assert [link.blocks["geometry"].shift_sum for link in model.links[:2]] == [0.0, 0.0]
+
+
+def test_shifts_make_a_non_standard_set_coaxial() -> None:
+    assert caveats(simple(22, 24, 71))[0][2].startswith("sun 22 + 2 × planet 24 = 70 ≠ ring 71")
+    exact = 0.53824 - 0.2
+    for x_s in (exact, 0.338):
+        assert codes(shifted({"module": 2, "shifts": [x_s, 0.2]},
+                             {"module": 2, "shifts": [0.2, 0.2]})) == []
+
+
+def test_a_wrong_shift_names_both_centre_distances() -> None:
+    # x_s = 0.3: inv α_w = 0.0149044 + 2 tan 20°·(0.3 + 0.2)/46 = 0.0228168, α_w = 22.9259°,
+    # a_w = 46 cos 20°/cos α_w = 46.9331 mm, 66.9 µm short of the ring pair's 47 mm
+    found = caveats(shifted({"module": 2, "shifts": [0.3, 0.2]},
+                            {"module": 2, "shifts": [0.2, 0.2]}))
+    assert [(c, p) for c, p, _ in found] == [("coaxiality", "links[0..1]")]
+    assert found[0][2] == (
+        "the working centre distances of planet p's meshes differ: links[0] 46.9331 mm "
+        "(shifts 0.3, 0.2); links[1] 47.0000 mm (shifts 0.2, 0.2); 66.9 µm apart, more "
+        "than 0.001 module = 2 µm: the planets cannot share the axis of the central gears")
+
+
+def test_a_centre_distance_states_the_shifted_set() -> None:
+    # both pairs at 47 mm: the sun pair's shift sum is the 0.53824 above, the ring pair's 0
+    at_47 = {"module": 2, "centre_distance": "47 mm"}
+    model = model_from_dict(shifted(at_47, at_47))
+    assert model.warnings == ()
+    sums = [link.blocks["geometry"].shift_sum for link in model.links[:2]]
+    assert sums[0] == pytest.approx(0.53824, abs=1e-5) and sums[1] == pytest.approx(0, abs=1e-12)
+    found = caveats(shifted(at_47, {"module": 2, "centre_distance": 47.5}))
+    assert [(c, p) for c, p, _ in found] == [("coaxiality", "links[0..1]")]
+    assert ("links[0] 47.0000 mm (its centre_distance); links[1] 47.5000 mm (its "
+            "centre_distance); 500.0 µm apart" in found[0][2])
+
+
+def test_a_centre_distance_must_be_the_shifts_own() -> None:
+    assert codes(shifted({"module": 2, "shifts": [0.338, 0.2], "centre_distance": 47},
+                         {"module": 2, "centre_distance": 47})) == []
+    with pytest.raises(ModelError) as error:
+        model_from_dict(shifted({"module": 2, "shifts": [0.3, 0.2], "centre_distance": 47},
+                                {"module": 2, "centre_distance": 47}))
+    assert error.value.path == "links[0].geometry.centre_distance"
+    assert ("the shifts [0.3, 0.2] put the pair at a working centre distance of 46.9331 mm, "
+            "not 47.0000 mm (66.9 µm apart" in str(error.value))
+
+
+def test_a_centre_distance_no_shift_reaches_is_refused() -> None:
+    # 52 mm needs x_s + x_p = 4.07 (each shift at most 2); 40 mm is inside the base
+    # circles' 46 cos 20° = 43.2259 mm
+    for distance, words in ((52, "it needs x1 + x2 = 4.0689, and no split of it"),
+                            (40, "not beyond the base circles' 43.2259 mm")):
+        with pytest.raises(ModelError) as error:
+            model_from_dict(shifted({"module": 2, "centre_distance": distance}, {"module": 2}))
+        assert error.value.path == "links[0].geometry.centre_distance"
+        assert words in str(error.value)
+
+
+def test_friction_needs_the_shifts_off_the_standard_distance() -> None:
+    doc = shifted({"module": 2, "centre_distance": 47}, {"module": 2, "centre_distance": 47})
+    doc["links"][0]["friction"] = {"mu": 0.05}
+    with pytest.raises(ModelError) as error:
+        model_from_dict(doc)
+    assert error.value.path == "links[0].geometry.centre_distance"
+    assert "the sum x1 + x2 = 0.5382: give shifts" in str(error.value)
+    doc["links"][0]["geometry"]["shifts"] = [0.338, 0.2]
+    assert model_from_dict(doc).warnings == ()
+
+
+def test_a_planet_has_one_shift() -> None:
+    # the ring pair at x_p = x_r = 0.3 is still at 47 mm (x_r − x_p = 0), but the planet
+    # has shift 0.2 in the sun pair: one gear, two profiles
+    found = caveats(shifted({"module": 2, "shifts": [0.338, 0.2]},
+                            {"module": 2, "shifts": [0.3, 0.3]}))
+    assert [(c, p) for c, p, _ in found] == [("gear-profile", "links[1].geometry")]
+    assert found[0][2].startswith("gear p has shift 0.2 in links[0].geometry but 0.3 here")
+
+
+def test_one_shifted_mesh_of_a_standard_set() -> None:
+    # 24/24/72: the sun shifted by 0.5 in the sun pair's block moves it off 48 mm; the
+    # ring pair without a block is unshifted at module 2 (the planet's, from that block)
+    doc = simple(24, 24, 72)
+    doc["links"][0]["geometry"] = {"module": 2, "shifts": [0.5, 0]}
+    found = caveats(doc)
+    assert [(c, p) for c, p, _ in found] == [("coaxiality", "links[0..1]")]
+    assert "links[1] 48.0000 mm (unshifted, module 2)" in found[0][2]
+
+
+def test_a_centre_distance_that_leaves_a_gear_undercut() -> None:
+    # 14/14 at module 1: each gear needs x >= 1 − 14 sin²20°/2 = 0.1812 against undercut,
+    # so x1 + x2 >= 0.3623. 14.5 mm needs 0.5603 (a clean split exists), 14.3 mm 0.3226
+    assert codes(pair({"module": 1, "centre_distance": 14.5})) == []
+    found = caveats(pair({"module": 1, "centre_distance": 14.3}))
+    assert [(c, p) for c, p, _ in found] == [("undercut", "links[0].geometry")]
+    assert found[0][2].startswith("every split of the shift sum x1 + x2 = 0.3226")
