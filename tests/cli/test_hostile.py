@@ -1,4 +1,7 @@
-"""Hostile input: every command ends with exit 0 or 2 and one line, never a traceback."""
+"""Hostile input: every command ends with exit 0 or 2 and one line, never a traceback.
+
+How long each command takes is the benchmark's to measure (benchmarks/hostile_inputs.py
+reports every run over 5 s); tests never time things."""
 from __future__ import annotations
 
 import io
@@ -6,7 +9,6 @@ import json
 import os
 import random
 import sys
-import time
 import warnings
 from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
@@ -82,11 +84,9 @@ def test_bad_characters_exit_2_naming_the_place(text: str, place: str, tmp_path)
 
 @pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="needs /dev/zero")
 def test_check_dev_zero_is_refused_at_once() -> None:
-    start = time.perf_counter()
     status, _, err = run("check", "/dev/zero")
     line = assert_one_error_line(status, err)
     assert "too large" in line or "NUL byte" in line  # by its size, or at its first byte
-    assert time.perf_counter() - start < 5.0  # generous: it reads at most 10 MB
 
 
 def test_max_model_size_option(tmp_path) -> None:
@@ -152,9 +152,7 @@ def test_random_mutations_of_library_models_never_crash(data, tmp_path_factory) 
     path = tmp_path_factory.mktemp("hostile") / "m.yaml"
     path.write_bytes(text.encode("utf-8", errors="surrogateescape"))
     for command in ("check", "solve"):
-        start = time.perf_counter()
         status, _, err = run(command, str(path))
-        assert time.perf_counter() - start < 5.0, (command, text)   # a hang, not a speed
         if status != 0:
             assert_one_error_line(status, err, expected=status)
             assert status == 2, err
@@ -169,7 +167,6 @@ def test_random_limit_values_and_bad_outputs_exit_2_at_once(case, value, writer,
                                                             tmp_path_factory) -> None:
     tmp = tmp_path_factory.mktemp("args")
     argv, option = case
-    start = time.perf_counter()
     status, out, err = run(*[a.replace("{v}", value).replace("{tmp}", str(tmp)) for a in argv])
     assert_one_error_line(status, err)
     argv, option, kind = writer
@@ -179,7 +176,6 @@ def test_random_limit_values_and_bad_outputs_exit_2_at_once(case, value, writer,
         path = str(tmp / "afile")
     status, out, err = run(*[a.format(missing=str(tmp / "m.yaml")) for a in argv], option, path)
     assert f"error: {option}: " in assert_one_error_line(status, err)
-    assert time.perf_counter() - start < 5.0   # refused before any work
 
 
 def _answer(path: Path) -> tuple[float, float]:
@@ -221,9 +217,7 @@ def test_benchmark_mutation_classes_never_crash(kind, model, seed, tmp_path_fact
     path = tmp_path_factory.mktemp("hostile") / "m.yaml"
     path.write_bytes(data)
     for command in ("check", "solve"):
-        start = time.perf_counter()
         status, _, err = run(command, str(path))
-        assert time.perf_counter() - start < 5.0, (kind, command)
         if status != 0:
             assert_one_error_line(status, err)
         if expect == "same" and command == "solve":
@@ -277,9 +271,7 @@ def test_table_classes_exit_0_or_2_with_one_line(kind, model, seed, tmp_path) ->
     answers = {}
     for label, argv in commands + (figures[:1] if bundle.figures else []):
         full = expand(argv, case, outputs, bundle.points)
-        start = time.perf_counter()
         status, out, err = run(*full)
-        assert time.perf_counter() - start < 5.0, (kind, bundle.note, label)
         assert status in (0, 2) and "Traceback" not in err, (kind, bundle.note, label, err)
         if status == 2:
             assert_one_error_line(status, err)

@@ -13,7 +13,6 @@ import copy
 import dataclasses
 import itertools
 import random
-import time
 from pathlib import Path
 
 import pytest
@@ -69,12 +68,9 @@ def test_issue34_sixteen_parallel_freewheels_answer_as_one_with_one_solve() -> N
                          for k in range(2, 18)])
     model = loads_model(text)
     solve, calls = counting(limit=4)
-    start = time.perf_counter()
     result = solve_mode(model, "1", solve)
-    elapsed = time.perf_counter() - start
     assert_conservation(result.result)
-    assert len(calls) == 1                      # one group, decided once
-    assert elapsed < 2.0                        # measured ~0.01 s; 2**17 solves before
+    assert len(calls) == 1                      # one group, decided once (2**17 solves before)
     assert result.verdict == "ok"
     assert result.result.ratio == pytest.approx(FIRST, rel=1e-12)
     names = [f"F{k}" for k in range(1, 18)]
@@ -100,9 +96,7 @@ def test_issue34_sixteen_parallel_freewheels_from_the_command_line(tmp_path, cap
     path.write_text(simpson_with([
         f"{{type: freewheel, name: F{k}, between: [c2, 0], holds: positive}}"
         for k in range(2, 18)]))
-    start = time.perf_counter()
     assert main(["solve", str(path), "--mode", "1"]) == 0
-    assert time.perf_counter() - start < 5.0
     out = capsys.readouterr().out
     assert "mode 1: engages C1 — ok" in out and "hold together in parallel" in out
 
