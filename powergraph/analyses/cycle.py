@@ -39,6 +39,7 @@ Examples
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from typing import IO, Any, Iterable, Mapping
@@ -46,7 +47,8 @@ from typing import IO, Any, Iterable, Mapping
 import numpy as np
 
 from powergraph.analyses.cycle_columns import (FAILED, LOCKED, SELF_LOCKING, Columns,
-                                               CycleRow, CycleRows, frozen, total)
+                                               CycleRow, CycleRows, FlowNames, frozen,
+                                               machine_states, total)
 from powergraph.analyses.cycle_points import Points, check_modes, read_points
 from powergraph.analyses.cycle_rows import (NUMERICAL, RowError, element_label, single_rows,
                                             solve_losses, sweep_rows, sweepable)
@@ -92,6 +94,17 @@ class CycleResult:
         row's ``negative_split`` is None).
     warnings : Mapping[str, ndarray of int]
         ``{warning code: sorted row indices}`` of the rows whose solve warned.
+    port_power : Mapping[str, ndarray]
+        With machines, each other port's power, W, by its name (or component id): fed
+        in at an input, taken out at an output (the model's sign); NaN in a row not
+        solved. Empty without machines.
+    machines : Mapping[str, Mapping[str, ndarray]]
+        With machines, each machine's ``speed`` (rad/s), ``torque`` (N·m), ``power``
+        (mechanical, into the train) and ``electrical_power`` (drawn from its bus), W;
+        its state is the sign of ``power`` (:meth:`machine_states`).
+    battery_power : Mapping[str, ndarray]
+        With machines, each bus's battery power into the bus, W (given, or what the
+        machines draw for a free battery).
     """
 
     name: str
@@ -111,6 +124,9 @@ class CycleResult:
     negative_split: np.ndarray
     with_machines: np.ndarray
     warnings: Mapping[str, np.ndarray]
+    port_power: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    machines: Mapping[str, Mapping[str, np.ndarray]] = dataclasses.field(default_factory=dict)
+    battery_power: Mapping[str, np.ndarray] = dataclasses.field(default_factory=dict)
 
     @classmethod
     def of(cls, name: str, method: str, points: Points, columns: Columns) -> "CycleResult":
@@ -127,19 +143,27 @@ class CycleResult:
                                frozen(points.mode_codes)),
                    verdict_texts=tuple(columns.verdict_texts),
                    losses={k: frozen(v) for k, v in columns.losses.items()},
-                   warnings={k: frozen(v) for k, v in columns.warnings().items()}, **arrays)
+                   warnings={k: frozen(v) for k, v in columns.warnings().items()},
+                   port_power={k: frozen(v) for k, v in columns.port_power.items()},
+                   machines={name: {k: frozen(v) for k, v in m.items()}
+                             for name, m in columns.machines.items()},
+                   battery_power={k: frozen(v) for k, v in columns.battery_power.items()},
+                   **arrays)
 
     @classmethod
     def from_rows(cls, name: str, rows: Iterable[CycleRow], method: str) -> "CycleResult":
         """The result holding ``rows`` (records, in order; ``index`` is their place)."""
         rows = tuple(rows)
-        columns = Columns(len(rows))
+        names = [dict.fromkeys(n for r in rows for n in getattr(r, key))
+                 for key in ("port_power", "machines", "battery_power")]
+        columns = Columns(len(rows), FlowNames(*map(tuple, names)))
         for i, r in enumerate(rows):
             if r.failed:
                 columns.fail(i, r.verdict)
             else:
                 columns.set(i, r.power_in, r.power_out, r.loss, r.efficiency, r.verdict,
                             r.losses, r.electrical_share, r.negative_split, r.warnings)
+                columns.put_flows(i, r.port_power, r.machines, r.battery_power)
         names = tuple(dict.fromkeys(r.mode for r in rows if r.mode is not None))
         if names and any(r.mode is None for r in rows):
             raise ValueError("rows with a mode and rows without one")
@@ -178,7 +202,16 @@ class CycleResult:
             negative_split=bool(self.negative_split[i]) if self.with_machines[i] else None,
             warnings=tuple(code for code, rows in self.warnings.items()
                            if _holds(rows, i)),
-            line=int(self.lines[i]))
+            line=int(self.lines[i]),
+            port_power=_present({k: float(v[i]) for k, v in self.port_power.items()}),
+            machines={name: {k: float(v[i]) for k, v in m.items()}
+                      for name, m in self.machines.items() if not math.isnan(m["power"][i])},
+            battery_power=_present({k: float(v[i]) for k, v in self.battery_power.items()}))
+
+    def machine_states(self, name: str) -> list[str]:
+        """Machine ``name``'s state per row: ``motoring``, ``generating``, ``idle``, or
+        an empty text in a row not solved (the sign of its mechanical power)."""
+        return machine_states(self.machines[name]["power"])
 
     @property
     def failed(self) -> np.ndarray:
@@ -217,6 +250,13 @@ class CycleResult:
         """Σ power × duration over the rows, in row order (J)."""
         with np.errstate(over="ignore", invalid="ignore"):
             return total(power * self.durations)
+
+    @property
+    def battery_energy(self) -> dict[str, float]:
+        """``{bus: J}``: the energy each battery gives its bus over the rows solved
+        (< 0: it is charged)."""
+        return {bus: self._energy(np.where(np.isnan(w), 0.0, w))
+                for bus, w in self.battery_power.items()}
 
     @property
     def efficiency(self) -> float | None:
@@ -262,7 +302,8 @@ class CycleResult:
                 "energy_lost": lost, "total_energy_lost": float(sum(lost.values())),
                 "efficiency": self.efficiency, "time_per_mode": self.time_per_mode,
                 "locked_rows": self.locked_rows, "warned_rows": self.warned_rows,
-                "negative_split_time": self.negative_split_time}
+                "negative_split_time": self.negative_split_time,
+                "battery_energy": self.battery_energy}
 
     def text_report(self) -> str:
         from powergraph.analyses.cycle_report import text_report
@@ -278,6 +319,11 @@ class CycleResult:
         from powergraph.plot.cycle import plot_cycle
 
         return plot_cycle(self, ax=ax, **kwargs)
+
+
+def _present(values: dict[str, float]) -> dict[str, float]:
+    """``values`` without the NaN ones (a row not solved)."""
+    return {k: v for k, v in values.items() if not math.isnan(v)}
 
 
 def _holds(rows: np.ndarray, i: int) -> bool:

@@ -3,6 +3,11 @@ array per quantity over the rows, tens of bytes per row (issue 34), filled at on
 compiled sweep's arrays or row by row by the single solves; and :class:`CycleRow`, one row
 as a record, built on demand from the columns.
 
+A train with machines also has, per row, each machine's speed, torque, mechanical and
+electrical power (:data:`MACHINE_KEYS`; its state is the sign of its power), each bus's
+battery power and each other port's power (the model's sign: fed in at an input, taken
+out at an output): NaN in a row not solved.
+
 Verdicts are codes into texts: :data:`VERDICTS` first (``ok``, ``locked``,
 ``self-locking``, ``no power``), then each distinct ``error: ...`` text once. A row's
 losses are one column per element, NaN where the row has no such element (a coupling
@@ -24,10 +29,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import field
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any, Iterable, Mapping, NamedTuple, Sequence
 
 import numpy as np
 
+from powergraph.model.spec import Model
 from powergraph.records import record
 from powergraph.statics.verdicts import VERDICTS
 
@@ -35,6 +41,54 @@ from powergraph.statics.verdicts import VERDICTS
 #: codes from ``len(VERDICTS)`` on are the ``error: ...`` texts of rows that could not be.
 OK, LOCKED, SELF_LOCKING, NO_POWER = range(4)
 FAILED = len(VERDICTS)
+#: A machine's quantities per row: rad/s, N·m, W into the train, W drawn from its bus.
+MACHINE_KEYS = ("speed", "torque", "power", "electrical_power")
+
+
+class FlowNames(NamedTuple):
+    """The names of a cycle's per-row flows: the ports other than machines, the machines
+    (each as the points file names it: its ``name``, else its component id) and the
+    buses. Empty for a train without machines."""
+
+    ports: tuple[str, ...] = ()
+    machines: tuple[str, ...] = ()
+    buses: tuple[str, ...] = ()
+
+
+#: The flows of a train without machines: none.
+NO_FLOWS = FlowNames()
+
+
+def flow_names(model: Model) -> FlowNames:
+    """The flows a cycle of ``model`` carries per row (none without machines)."""
+    if not model.machines:
+        return NO_FLOWS
+    return FlowNames(tuple(port_label(p) for p in model.ports if not p.is_machine),
+                     tuple(port_label(p) for p in model.machines), tuple(model.buses))
+
+
+def port_label(port: Any) -> str:
+    """A port as the points file names it: its ``name``, else its component id."""
+    return port.name or str(port.component)
+
+
+def machine_state(power: float) -> str:
+    """``motoring``, ``generating`` or ``idle``, by the sign of the mechanical power
+    (:attr:`powergraph.statics.machines.MachineFlow.state`)."""
+    return "motoring" if power > 0 else ("generating" if power < 0 else "idle")
+
+
+def machine_states(power: np.ndarray) -> list[str]:
+    """:func:`machine_state` of each power, an empty text for NaN (a row not solved).
+
+    >>> machine_states(np.array([5.0, -1.0, 0.0, np.nan]))
+    ['motoring', 'generating', 'idle', '']
+    """
+    codes = np.where(power > 0, 1, np.where(power < 0, 2, np.where(power == 0, 3, 0)))
+    return _STATES[codes].tolist()
+
+
+_STATES = np.array(["", "motoring", "generating", "idle"], dtype=object)
 
 
 @record
@@ -61,6 +115,12 @@ class CycleRow:
     warnings: tuple[str, ...] = ()
     #: The row's line in the points file (None: the row after the header, ``index + 2``).
     line: int | None = None
+    #: With machines: each other port's power (W, fed in at an input, taken out at an
+    #: output), each machine's :data:`MACHINE_KEYS` and each bus's battery power (W into
+    #: the bus); empty otherwise and in a row not solved.
+    port_power: Mapping[str, float] = field(repr=False, default_factory=dict)
+    machines: Mapping[str, Mapping[str, float]] = field(repr=False, default_factory=dict)
+    battery_power: Mapping[str, float] = field(repr=False, default_factory=dict)
 
     @property
     def failed(self) -> bool:
@@ -77,7 +137,12 @@ class CycleRow:
                 "mode": self.mode, "power_in": self.power_in, "power_out": self.power_out,
                 "loss": self.loss, "efficiency": self.efficiency, "verdict": self.verdict,
                 "losses": dict(self.losses), "electrical_share": self.electrical_share,
-                "negative_split": self.negative_split, "warnings": list(self.warnings)}
+                "negative_split": self.negative_split, "warnings": list(self.warnings),
+                "port_power": dict(self.port_power),
+                "machines": {name: {**{k: m[k] for k in MACHINE_KEYS},
+                                    "state": machine_state(m["power"])}
+                             for name, m in self.machines.items()},
+                "buses": {bus: {"battery_power": w} for bus, w in self.battery_power.items()}}
 
 
 class Columns:
@@ -85,8 +150,12 @@ class Columns:
     a row's verdict code is -1 until :meth:`fill` or :meth:`set` solves it or :meth:`fail`
     gives its reason."""
 
-    def __init__(self, n: int) -> None:
+    def __init__(self, n: int, flows: FlowNames = NO_FLOWS) -> None:
         self.n = n
+        self.port_power = {name: np.full(n, np.nan) for name in flows.ports}
+        self.machines = {name: {key: np.full(n, np.nan) for key in MACHINE_KEYS}
+                         for name in flows.machines}
+        self.battery_power = {bus: np.full(n, np.nan) for bus in flows.buses}
         self.power_in, self.power_out, self.loss = np.zeros(n), np.zeros(n), np.zeros(n)
         self.efficiencies, self.electrical_share = np.full(n, np.nan), np.full(n, np.nan)
         self.verdict_texts = list(VERDICTS)
@@ -141,11 +210,29 @@ class Columns:
             if label in self.losses or not np.isnan(values).all():
                 self._loss_column(label)[rows] = values
 
+    def flow_arrays(self) -> list[np.ndarray]:
+        """Every flow column (ports, machines, buses)."""
+        return [*self.port_power.values(), *self.battery_power.values(),
+                *(a for m in self.machines.values() for a in m.values())]
+
+    def put_flows(self, rows: np.ndarray | int, port_power: Mapping[str, Any],
+                  machines: Mapping[str, Mapping[str, Any]],
+                  battery_power: Mapping[str, Any]) -> None:
+        """The flows of the rows ``rows`` (indices, or one row): values or arrays over
+        them, by name (a name the columns lack is an error)."""
+        for name, values in port_power.items():
+            self.port_power[name][rows] = values
+        for name, quantities in machines.items():
+            for key in MACHINE_KEYS:
+                self.machines[name][key][rows] = quantities[key]
+        for bus, values in battery_power.items():
+            self.battery_power[bus][rows] = values
+
     def set(self, i: int, power_in: float, power_out: float, loss: float,
             efficiency: float | None, verdict: str, losses: Mapping[str, float],
             electrical_share: float | None = None, negative_split: bool | None = None,
             warnings: Iterable[str] = ()) -> None:
-        """Row ``i``, solved by one single solve."""
+        """Row ``i``, solved by one single solve (its flows by :meth:`put_flows`)."""
         self.power_in[i], self.power_out[i], self.loss[i] = power_in, power_out, loss
         self.efficiencies[i] = math.nan if efficiency is None else efficiency
         self.verdict_codes[i] = self.verdict_code(verdict)
@@ -163,7 +250,7 @@ class Columns:
         self.efficiencies[i] = self.electrical_share[i] = math.nan
         self.verdict_codes[i] = self.verdict_code(verdict)
         self.with_machines[i] = self.negative_split[i] = False
-        for column in self.losses.values():
+        for column in [*self.losses.values(), *self.flow_arrays()]:
             column[i] = math.nan
 
     def warn(self, code: str, rows: np.ndarray) -> None:

@@ -32,7 +32,7 @@ import itertools
 
 import numpy as np
 
-from powergraph.analyses.cycle_columns import Columns
+from powergraph.analyses.cycle_columns import Columns, flow_names
 from powergraph.analyses.cycle_points import Points
 from powergraph.analyses.cycle_hybrid_report import report
 from powergraph.analyses.cycle_rows import cleared, single_row
@@ -75,7 +75,7 @@ def hybrid_rows(model: Model, points: Points, keep_going: bool) -> Columns:
     """
     base = cleared(model, points)
     refuse_loss_blocks(base, "the hybrid cycle's sweep")
-    columns, alone = Columns(len(points)), []
+    columns, alone = Columns(len(points), flow_names(model)), []
     choices = _Choices(base, points)
     for start in range(0, len(points), BLOCK):
         rows = np.arange(start, min(len(points), start + BLOCK))
@@ -151,7 +151,7 @@ def _newton(train: PlainTrain, batch: Batch, columns: Columns) -> np.ndarray:
     alone.append(batch.rows[~state.ok])
     keep = state.ok
     batch, state, x = batch.take(keep), state.take(keep), x[keep]
-    scale = balance_scale(state.powers, train.balanced)
+    scale = balance_scale(state.powers, train.balanced, state.batteries)
     r, jac = state.residual, None
     for _ in range(MAX_STEPS):
         done = settled(r, scale)

@@ -2,15 +2,17 @@
 what :func:`~powergraph.analyses.cycle_rows.single_row` reads from each row's single solve
 — the powers at the system's boundary (the ports, the batteries instead of the machines),
 the loss of every element and machine, the efficiency, the verdict, the electrical share,
-the negative split and the row's own warnings — by the same rules, on arrays over the
-rows (the rules of :mod:`powergraph.statics.result`, :mod:`~powergraph.statics.ports`,
-:mod:`~powergraph.statics.machine_report` and :mod:`~powergraph.statics.flow`).
+the negative split, the row's own warnings and its flows (each port's power, each
+machine's speed, torque and powers, each bus's battery power) — by the same rules, on
+arrays over the rows (the rules of :mod:`powergraph.statics.result`,
+:mod:`~powergraph.statics.ports`, :mod:`~powergraph.statics.machine_report` and
+:mod:`~powergraph.statics.flow`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from powergraph.analyses.cycle_columns import Columns
+from powergraph.analyses.cycle_columns import Columns, port_label
 from powergraph.statics.ports import capped
 from powergraph.statics.verdicts import verdict_codes
 from powergraph.statics.loss_sources import element_label, loss_sources
@@ -35,9 +37,10 @@ def report(train: PlainTrain, state: State, rows: np.ndarray, columns: Columns) 
     drawn: dict = {}
     for j, port in enumerate(machines):
         drawn[port.bus] = drawn.get(port.bus, 0.0) + state.electrical[:, j]
-    batteries = [np.broadcast_to(float(bus.battery) if bus.battery is not None
+    balanced = [bus.name for bus in train.balanced]
+    batteries = [np.broadcast_to(state.batteries[:, balanced.index(name)] if name in balanced
                                  else drawn.get(name, 0.0), len(rows)) + 0.0
-                 for name, bus in model.buses.items()]
+                 for name in model.buses]
     crossing = [powers[:, p.index] for p in ports if not p.is_machine] + batteries
     entering, leaving = _sums(crossing)
     machine_sum = sum(machine_loss[:, j] for j in range(len(machines)))
@@ -68,12 +71,30 @@ def report(train: PlainTrain, state: State, rows: np.ndarray, columns: Columns) 
     columns.put(rows[good], *(keep(a + 0.0) for a in (entering, leaving, loss)),
                 keep(efficiency), keep(verdicts), {k: keep(v) for k, v in losses.items()},
                 keep(share), keep(split))
+    columns.put_flows(rows[good], *_flows(train, state, batteries, good))
     places = _warnings(train, state, silent)
     first = {code: (int(np.argmax(np.isfinite(p))), float(p[np.isfinite(p)][0]))
              for code, p in places.items()}
     for code in sorted(places, key=first.__getitem__):  # as the first row lists them
         columns.warn(code, rows[np.isfinite(places[code]) & good])
     return rows[~good]
+
+
+def _flows(train: PlainTrain, state: State, batteries: list,
+           good: np.ndarray) -> tuple[dict, dict, dict]:
+    """The flows of the rows ``good``, as :func:`~powergraph.analyses.cycle_rows.flows`
+    reads them from a single solve."""
+    model = train.values.model
+    label = port_label
+    ports = {label(p): (-state.powers[good, p.index] if p.role == "output"
+                        else state.powers[good, p.index]) + 0.0
+             for p in model.ports if not p.is_machine}
+    machines = {label(p): {"speed": state.speeds[good, p.index],
+                           "torque": state.torques[good, p.index],
+                           "power": state.powers[good, p.index],
+                           "electrical_power": state.electrical[good, j]}
+                for j, p in enumerate(train.machines)}
+    return ports, machines, {name: b[good] for name, b in zip(model.buses, batteries)}
 
 
 def _sums(powers: list) -> tuple[np.ndarray, np.ndarray]:

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from powergraph.analyses.cycle_columns import FAILED, Columns
+from powergraph.analyses.cycle_columns import FAILED, Columns, flow_names
 from powergraph.analyses.cycle_points import Points, read_points  # noqa: F401 (doctest)
 from powergraph.analyses.cycle_rows import (NUMERICAL, _fill, cleared, refused, single_row,
                                             slices)
@@ -41,7 +41,7 @@ METHOD = "modes (sweep per gear)"
 def mode_rows(model: Model, points: Points, keep_going: bool) -> Columns:
     """Every row of ``points`` (with a ``mode`` column) in its mode's case."""
     base = cleared(model, points)
-    columns = Columns(len(points))
+    columns = Columns(len(points), flow_names(model))
     for code, mode in enumerate(points.mode_names):
         rows = np.flatnonzero(points.mode_codes == code)
         if rows.size:

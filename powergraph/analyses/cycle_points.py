@@ -2,11 +2,12 @@
 
 One row per operating point: ``PORT.speed``, ``PORT.power`` or ``PORT.torque`` columns
 (PORT a port's ``name`` or component id; the unit in brackets, SI without one), optional
-``duration [s]`` or ``time [s]`` (each row lasts until the next, the last as long as the
-one before) and ``mode`` (docs/hybrid.md lists what is refused).
+``BUS.battery`` columns (a bus's battery power in the row), ``duration [s]`` or
+``time [s]`` (each row lasts until the next, the last as long as the one before) and
+``mode`` (docs/hybrid.md lists what is refused).
 
 The header is checked whole before a row is read, each unit once
-(:func:`~powergraph.model.units.unit_factor`). The rows are streamed into one float array
+(:mod:`~powergraph.analyses.cycle_header`). The rows are streamed into one float array
 per column, :data:`CHUNK` rows at a time; the first problem is an error naming the row
 (the file's line) and the column. A file is read by
 :func:`~powergraph.model.input_files.read_table_text` (size limit, UTF-8).
@@ -32,50 +33,24 @@ import csv
 import io
 import itertools
 import os
-import re
-from typing import IO, Iterator, NamedTuple
+from typing import IO, Iterator
 
 import numpy as np
 
-from powergraph.errors import ModelError, UsageError
+from powergraph.analyses.cycle_header import TIME_UNITS, Column, Layout, layout  # noqa: F401
+from powergraph.errors import UsageError
 from powergraph.model.input_files import read_table_text
 from powergraph.model.spec import Model
 from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
-from powergraph.model.units import SI_UNITS, unit_factor
+from powergraph.model.units import SI_UNITS
 from powergraph.model.yaml_loader import brief
 from powergraph.records import record
 
-_HEADER = re.compile(r"^\s*(?P<port>.+?)\.(?P<what>speed|power|torque)\s*"
-                     r"(\[(?P<unit>[^\]]*)\])?\s*$")
-_TIME = re.compile(r"^\s*(?P<what>duration|time)\s*(\[(?P<unit>[^\]]*)\])?\s*$")
-#: Units of a ``duration`` or ``time`` column, in seconds.
-TIME_UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 #: Largest port values (SI) a row may give, as in model files.
-PORT_LIMITS = {"speed": MAX_SPEED, "power": MAX_POWER, "torque": MAX_TORQUE}
+PORT_LIMITS = {"speed": MAX_SPEED, "power": MAX_POWER, "torque": MAX_TORQUE,
+               "battery": MAX_POWER}
 #: Rows converted at a time: the most rows held as text at once.
 CHUNK = 8192
-
-
-class Column(NamedTuple):
-    """A column of numbers: its place in the row, its header, its ``ports.<i>.<kind>``
-    path (``duration`` or ``time``, port -1, otherwise) and its factor to SI."""
-
-    position: int
-    name: str
-    path: str
-    port: int
-    kind: str
-    scale: float
-
-
-class Layout(NamedTuple):
-    """What the header says: the port columns, the duration or time column, the mode
-    column's place and the number of cells of a row."""
-
-    ports: tuple[Column, ...]
-    time: Column | None
-    mode: int | None
-    width: int
 
 
 @record
@@ -83,7 +58,7 @@ class Points:
     """The operating points: ``columns`` ``(PATH, port index, kind)`` with their SI
     ``values`` (one float array per column), each row's duration (s) and file line, and
     the modes as ``mode_codes`` (one per row, or None without a ``mode`` column) into
-    ``mode_names``."""
+    ``mode_names``; ``batteries`` ``(bus, SI values)`` of the ``BUS.battery`` columns."""
 
     columns: tuple[tuple[str, int, str], ...]
     values: tuple[np.ndarray, ...]
@@ -94,6 +69,8 @@ class Points:
     mode_codes: np.ndarray | None = None
     #: The header of the ``duration`` or ``time`` column, if any.
     duration_column: str | None = None
+    #: ``(bus name, battery power per row, W)`` of each ``BUS.battery`` column.
+    batteries: tuple[tuple[str, np.ndarray], ...] = ()
 
     def __len__(self) -> int:
         return len(self.durations)
@@ -154,90 +131,13 @@ def _bounds(text: str, size: int) -> Iterator[tuple[int, int]]:
         start = end
 
 
-def layout(header: list[str], model: Model, source: str) -> Layout:
-    """Check a header against ``model``: every column known, each quantity once, each
-    unit of its column's kind, a mode column when (and only when) the model has modes."""
-    ports, found, seen = _port_index(model), [], {}
-    time = mode = None
-    for j, name in enumerate(cell.strip() for cell in header):
-        where = f"{source}: column {brief(name)}"
-        timed, match = _TIME.match(name), _HEADER.match(name)
-        if name == "mode":
-            if mode is not None or not model.modes:
-                raise UsageError(f"{where}: " + ("a second mode column; a row has one mode"
-                                 if mode is not None else f"the model {model.name!r} has "
-                                 "no modes (no modes: table, docs/modes.md)"))
-            mode = j
-        elif timed:
-            if time is not None:
-                raise UsageError(f"{where}: " + _clash(time.name, time.path == timed["what"],
-                                                       "a row's duration or its time"))
-            time = Column(j, name, timed["what"], -1, "time", _time_scale(timed["unit"], where))
-        elif match and match["port"].strip() in ports:
-            found.append(_port_column(j, name, match, ports, seen, where))
-        else:
-            raise UsageError(f"{where}: expected PORT.speed, PORT.power or PORT.torque "
-                             f"with PORT one of {', '.join(sorted(ports))}, duration [s], "
-                             "time [s] or mode")
-    if not found:
-        raise UsageError(f"{source}: no PORT.speed, PORT.power or PORT.torque column")
-    if model.modes and mode is None:
-        raise UsageError(f"{source}: no mode column, but the model has modes "
-                         f"{', '.join(model.modes)}: a 'mode' column names each row's")
-    return Layout(tuple(found), time, mode, len(header))
-
-
-def _port_column(j: int, name: str, match: re.Match, ports: dict[str, int],
-                 seen: dict[tuple[int, str], Column], where: str) -> Column:
-    """The column of a port's speed, power or torque; ``seen`` by (port, speed or load)."""
-    index, kind = ports[match["port"].strip()], match["what"]
-    key = (index, "speed" if kind == "speed" else "load")
-    if key in seen:
-        raise UsageError(f"{where}: " + _clash(seen[key].name, seen[key].kind == kind,
-                                               "a port's load is its power or its torque",
-                                               f" (ports[{index}] {kind})"))
-    seen[key] = Column(j, name, f"ports.{index}.{kind}", index, kind,
-                       _scale(match["unit"], kind, where))
-    return seen[key]
-
-
-def _clash(first: str, same: bool, either: str, what: str = "") -> str:
-    if same:
-        return f"the same quantity as column {brief(first)}{what}; one column per quantity"
-    return f"conflicts with column {brief(first)}: {either}, not both"
-
-
-def _port_index(model: Model) -> dict[str, int]:
-    out = {str(p.component): p.index for p in model.ports}
-    out.update({p.name: p.index for p in model.ports if p.name})
-    return out
-
-
-def _scale(unit: str | None, kind: str, where: str) -> float:
-    """The SI value of one ``unit`` of ``kind`` (1 without a unit)."""
-    if unit is None or not unit.strip():
-        return 1.0
-    try:
-        return unit_factor(unit, kind, where)
-    except ModelError as error:
-        raise UsageError(error.message, error.path) from None
-
-
-def _time_scale(unit: str | None, where: str) -> float:
-    if unit is None or not unit.strip():
-        return 1.0
-    if unit.strip() not in TIME_UNITS:
-        raise UsageError(f"{where}: {brief(unit.strip())} is not a unit of time: a duration or "
-                         f"a time is written in {', '.join(TIME_UNITS)}")
-    return TIME_UNITS[unit.strip()]
-
-
 class _Table:
     """The columns as read: float arrays per column (one per chunk), lines, mode codes."""
 
     def __init__(self, layout: Layout, model: Model, source: str) -> None:
         self.layout, self.modes, self.source = layout, model.modes, source
-        self.numbers = layout.ports + ((layout.time,) if layout.time else ())
+        self.numbers = layout.ports + layout.batteries + ((layout.time,) if layout.time
+                                                          else ())
         self.parts: list[list[np.ndarray]] = [[] for _ in self.numbers]
         self.lines: list[np.ndarray] = []
         self.mode_names: list[str] = []
@@ -276,7 +176,7 @@ class _Table:
         cells = [flat[j::width] for j in range(width)]
         converted = [_numbers(cells[c.position], c) for c in self.numbers]
         problems = [p for _, p in converted if p is not None]
-        if any(p[2] == "empty cell" for p in problems):
+        if any(p[2].startswith("empty cell") for p in problems):
             full, full_starts = self._full(rows, starts)
             if len(full) < len(rows):   # blank rows (",,,"): skipped
                 return self.add(full, full_starts) if full else None
@@ -312,12 +212,21 @@ class _Table:
         time = self.layout.time
         durations = (_durations(values.pop(), time, lines, self.source) if time
                      else np.ones(len(lines)))
+        ports = len(self.layout.ports)
+        batteries = tuple((c.bus, v) for c, v in zip(self.layout.batteries, values[ports:]))
         return Points(columns=tuple((c.path, c.port, c.kind) for c in self.layout.ports),
-                      values=tuple(values), durations=durations, lines=lines,
+                      values=tuple(values[:ports]), durations=durations, lines=lines,
+                      batteries=batteries,
                       source=self.source, mode_names=tuple(self.mode_names),
                       mode_codes=(None if self.layout.mode is None else
                                   np.concatenate(self.codes)),
                       duration_column=time.name if time else None)
+
+
+#: What an empty cell of a ``BUS.battery`` column is told (issue 37: in a cycle of one
+#: mode every row gives the battery's power; "not given in this row" is not read yet).
+_EMPTY_BATTERY = (": a BUS.battery column gives the bus's battery power in every row (a "
+                  "number, in the header's unit)")
 
 
 def _numbers(cells: list[str], column: Column):
@@ -328,10 +237,12 @@ def _numbers(cells: list[str], column: Column):
     except ValueError:
         k = next((k for k, text in enumerate(cells) if not _is_number(text)), 0)
         text = cells[k].strip()
-        return None, (k, column.name, f"not a number: {brief(text)}" if text else "empty cell")
+        return None, (k, column.name, f"not a number: {brief(text)}" if text else
+                      "empty cell" + _EMPTY_BATTERY * (column.kind == "battery"))
     with np.errstate(over="ignore", invalid="ignore"):
         values = raw * column.scale
     limit = PORT_LIMITS.get(column.kind, np.finfo(float).max)   # a time: finite
+    what = "power" if column.kind == "battery" else column.kind
     bad = ~(np.abs(values) <= limit)          # NaN and inf included
     if not bad.any():
         return values, None
@@ -339,10 +250,11 @@ def _numbers(cells: list[str], column: Column):
     text = cells[k].strip()
     if not np.isfinite(raw[k]):
         return None, (k, column.name, f"not a finite number: {brief(text)}")
-    si = "s" if column.kind == "time" else SI_UNITS[column.kind]
+    si = "s" if column.kind == "time" else SI_UNITS[what]
     if np.isfinite(values[k]):
-        return None, (k, column.name, f"{brief(text)} is out of range: a port's "
-                      f"{column.kind} is at most {limit:g} {si} either way, as in model files")
+        owner = "a battery's" if column.kind == "battery" else "a port's"
+        return None, (k, column.name, f"{brief(text)} is out of range: {owner} "
+                      f"{what} is at most {limit:g} {si} either way, as in model files")
     return None, (k, column.name, f"{brief(text)} overflows once in {si} (beyond the "
                   f"largest float, {np.finfo(float).max:.3g})")
 
@@ -404,5 +316,10 @@ def check_modes(points: Points, model: Model) -> None:
 
 
 def as_dict(points: Points, row: int) -> dict[str, float]:
-    """``{PATH: SI value}`` of one row."""
+    """``{PATH: SI value}`` of one row's port columns."""
     return {path: float(v[row]) for (path, _, _), v in zip(points.columns, points.values)}
+
+
+def batteries_of(points: Points, row: int) -> dict[str, float]:
+    """``{bus: battery power, W}`` of one row's ``BUS.battery`` columns."""
+    return {bus: float(v[row]) for bus, v in points.batteries}

@@ -1,5 +1,10 @@
 """Text, JSON rows and CSV views of a :class:`~powergraph.analyses.cycle.CycleResult`,
-read from its columns :data:`CHUNK` rows at a time (the CSV is written as it goes)."""
+read from its columns :data:`CHUNK` rows at a time (the CSV is written as it goes).
+
+With machines, each row also carries the flows (:func:`flow_columns`): in JSON
+``port_power``, ``machines`` and ``buses``; in CSV after :data:`COLUMNS`, in the points
+file's own syntax, ``engine.power [W]``, ``MG1.speed [rad/s]``, ``MG1.torque [N*m]``,
+``MG1.power [W]``, ``MG1.electrical_power [W]``, ``MG1.state``, ``dc.battery [W]``."""
 from __future__ import annotations
 
 import csv
@@ -9,13 +14,16 @@ from typing import Any, Iterator
 
 import numpy as np
 
-from powergraph.analyses.cycle_columns import LOCKED, SELF_LOCKING
+from powergraph.analyses.cycle_columns import (LOCKED, MACHINE_KEYS, SELF_LOCKING,
+                                               machine_states)
 from powergraph.format import aligned_table, format_number
 
 #: CSV columns of the per-row results, with their units.
 COLUMNS = (("row", None), ("duration", "s"), ("mode", None), ("power_in", "W"),
            ("power_out", "W"), ("loss", "W"), ("efficiency", "-"), ("verdict", None),
            ("electrical_share", "-"), ("negative_split", None), ("warnings", None))
+#: The unit of each machine quantity in the CSV header (SI).
+MACHINE_UNITS = {"speed": "rad/s", "torque": "N*m", "power": "W", "electrical_power": "W"}
 #: Rows named one by one in the text report, per list.
 SHOWN = 12
 #: Rows turned into Python values at a time (JSON rows, CSV lines).
@@ -43,6 +51,9 @@ def text_report(result: "CycleResult") -> str:
     if result.with_machines.any():
         lines.append(f"negative split      {format_number(result.negative_split_time, 6)} s "
                      "(power circulating through a bus)")
+    for bus, joules in result.battery_energy.items():
+        lines.append(f"battery {bus}".ljust(19) + f" {kj(joules)} kJ into the bus"
+                     + (" (charged)" if joules < 0 else ""))
     codes = result.verdict_codes
     locked = np.flatnonzero((codes == LOCKED) | (codes == SELF_LOCKING))
     if len(locked):
@@ -99,7 +110,8 @@ def _warnings(result: "CycleResult", part: slice, lists: bool) -> list:
 
 #: The keys of a row in ``to_dict()["rows"]``, in order.
 ROW_KEYS = ("row", "line", "duration", "mode", "power_in", "power_out", "loss", "efficiency",
-            "verdict", "losses", "electrical_share", "negative_split", "warnings")
+            "verdict", "losses", "electrical_share", "negative_split", "warnings",
+            "port_power", "machines", "buses")
 
 
 def row_dicts(result: "CycleResult") -> list[dict[str, Any]]:
@@ -122,8 +134,49 @@ def row_dicts(result: "CycleResult") -> list[dict[str, Any]]:
             ([{k: v for k, v in zip(labels, row) if not isnan(v)} for row in losses]
              if labels else [{} for _ in range(size)]),
             _optional(result.electrical_share[part]), [s if m else None for s, m in split],
-            _warnings(result, part, lists=True))
+            _warnings(result, part, lists=True), *_flow_dicts(result, part))
         out += [dict(zip(ROW_KEYS, values)) for values in zip(*columns)]
+    return out
+
+
+def _flow_dicts(result: "CycleResult", part: slice) -> tuple[list, list, list]:
+    """Per row of ``part``: ``port_power``, ``machines`` (each with its ``state``) and
+    ``buses``, empty in a row not solved (and without machines)."""
+    size = part.stop - part.start
+    if not result.machines:
+        return [{}] * size, [{}] * size, [{}] * size
+    ports = _by_row({k: v[part] for k, v in result.port_power.items()})
+    buses = [{bus: {"battery_power": w} for bus, w in row.items()}
+             for row in _by_row({k: v[part] for k, v in result.battery_power.items()})]
+    machines: list[dict] = [{} for _ in range(size)]
+    for name, quantities in result.machines.items():
+        states = machine_states(quantities["power"][part])
+        for k, values in enumerate(zip(*(quantities[key][part].tolist()
+                                          for key in MACHINE_KEYS))):
+            if states[k]:
+                machines[k][name] = {**dict(zip(MACHINE_KEYS, values)), "state": states[k]}
+    return ports, machines, buses
+
+
+def _by_row(columns: dict[str, np.ndarray]) -> list[dict[str, float]]:
+    """``{name: value}`` per row from columns by name, without the NaN values."""
+    names = list(columns)
+    return [{k: v for k, v in zip(names, row) if not isnan(v)}
+            for row in zip(*(columns[k].tolist() for k in names))]
+
+
+def flow_columns(result: "CycleResult") -> list[tuple[str, np.ndarray, bool]]:
+    """``(header, values, state)`` of each flow column of the CSV: each other port's
+    power, each machine's quantities and state (``state`` True: the machine's states,
+    from its power ``values``), each bus's battery power."""
+    out = [(f"{name}.power [W]", values, False)
+           for name, values in result.port_power.items()]
+    for name, quantities in result.machines.items():
+        out += [(f"{name}.{key} [{MACHINE_UNITS[key]}]", quantities[key], False)
+                for key in MACHINE_KEYS]
+        out.append((f"{name}.state", quantities["power"], True))
+    out += [(f"{bus}.battery [W]", values, False)
+            for bus, values in result.battery_power.items()]
     return out
 
 
@@ -143,8 +196,10 @@ def _write_csv(result: "CycleResult", out: Any) -> None:
     """The header, then the rows a chunk at a time: numbers by their repr (None: an empty
     cell), each distinct text (verdict, mode, warnings) quoted once as the csv module
     quotes a cell."""
+    flows = flow_columns(result)
     csv.writer(out, lineterminator="\n").writerow(
-        [f"{name} [{unit}]" if unit else name for name, unit in COLUMNS])
+        [f"{name} [{unit}]" if unit else name for name, unit in COLUMNS]
+        + [header for header, _, _ in flows])
     verdicts = [_cell(text) for text in result.verdict_texts]
     modes = [_cell(name) for name in result.mode_names]
     warnings: dict[str, str] = {}
@@ -163,12 +218,16 @@ def _write_csv(result: "CycleResult", out: Any) -> None:
             [words[s] if m else "" for s, m in zip(result.negative_split[part].tolist(),
                                                    result.with_machines[part].tolist())],
             [warnings[w] if w in warnings else warnings.setdefault(w, _cell(w))
-             for w in _warnings(result, part, lists=False)])
+             for w in _warnings(result, part, lists=False)],
+            *(machine_states(values[part]) if state else _reprs(values[part])
+              for _, values, state in flows))
         out.write("\n".join(map(",".join, zip(*columns))) + "\n")
 
 
 def _reprs(values: np.ndarray) -> list[str]:
     """The values' reprs, an empty cell for NaN."""
+    if not np.isnan(values).any():
+        return list(map(repr, values.tolist()))
     return ["" if isnan(v) else repr(v) for v in values.tolist()]
 
 

@@ -13,8 +13,8 @@ import math
 import numpy as np
 
 from powergraph.analyses.cycle_columns import CycleRow  # noqa: F401  (re-exported)
-from powergraph.analyses.cycle_columns import OK, Columns
-from powergraph.analyses.cycle_points import Points, as_dict
+from powergraph.analyses.cycle_columns import OK, Columns, flow_names, port_label
+from powergraph.analyses.cycle_points import Points, as_dict, batteries_of
 from powergraph.errors import ModelError, PowerGraphError, UsageError
 from powergraph.model.spec import Model
 from powergraph.statics.loss_sources import element_label, losses
@@ -119,10 +119,14 @@ def _finite(values) -> np.ndarray:
 
 def cleared(model: Model, points: Points) -> Model:
     """The model with the loads of the ports the points load cleared (a port takes
-    power or torque, not both)."""
+    power or torque, not both), and the batteries the points give balanced: at NaN, a
+    place each row fills with its own value (so that a batched evaluator that read the
+    model's value instead would fail loudly)."""
     for _, index, kind in points.columns:
         if kind in ("power", "torque"):
             model = model.with_port(index, power=None, torque=None)
+    for bus, _ in points.batteries:
+        model = model.with_bus(bus, battery=math.nan)
     return model
 
 
@@ -130,7 +134,7 @@ def single_rows(model: Model, points: Points, keep_going: bool = True) -> Column
     """One single solve per row, into preallocated columns; without ``keep_going`` the
     first row that cannot be solved is an error."""
     base = cleared(model, points)
-    columns = Columns(len(points))
+    columns = Columns(len(points), flow_names(model))
     for i in range(len(points)):
         single_row(base, points, i, keep_going, columns)
     return columns
@@ -148,6 +152,8 @@ def single_row(base: Model, points: Points, i: int, keep_going: bool,
         for path, value in as_dict(points, i).items():
             _, index, kind = path.split(".")
             variant = variant.with_port(int(index), **{kind: value})
+        for bus, value in batteries_of(points, i).items():
+            variant = variant.with_bus(bus, battery=value)
         result = _solve(variant, points.mode(i))
         crossing = boundary_powers(result)
         power_in = sum(p for p in crossing if p > 0) + 0.0
@@ -168,6 +174,26 @@ def single_row(base: Model, points: Points, i: int, keep_going: bool,
                 electrical_share=electrical_share(result) if result.machines else None,
                 negative_split=negative_split(result) if result.machines else None,
                 warnings=_own_warnings(result))
+    if result.machines:
+        columns.put_flows(i, *flows(result))
+
+
+def flows(result) -> tuple[dict, dict, dict]:
+    """The flows of one single solve with machines, as the cycle's columns hold them
+    (:class:`~powergraph.analyses.cycle_columns.FlowNames`): each other port's power
+    (fed in at an input, taken out at an output), each machine's quantities, each bus's
+    battery power."""
+    model = result.model
+    label = port_label
+    ports = {}
+    for port in model.ports:
+        if not port.is_machine:
+            power = result.ports[port.index].power
+            ports[label(port)] = (-power if port.role == "output" else power) + 0.0
+    machines = {label(port): {"speed": m.speed, "torque": m.torque, "power": m.power,
+                              "electrical_power": m.electrical_power}
+                for port, m in zip(model.machines, result.machines)}
+    return ports, machines, {name: b.battery_power for name, b in result.buses.items()}
 
 
 def _solve(model: Model, mode: str | None):

@@ -41,6 +41,7 @@ class RowValues:
                         for (_, index, kind), values in zip(points.columns, points.values)}
         self.paths = {(index, kind): path for path, index, kind in points.columns}
         self.bodies = {body.id: j for j, body in enumerate(model.bodies)}
+        self.batteries = dict(points.batteries)
         self.speed_ports = [p.index for p in model.ports if self.given(p.index, "speed")]
         basis = []
         for j in self.speed_ports or [None]:
@@ -60,6 +61,12 @@ class RowValues:
             return self.columns[(index, kind)][rows]
         return np.full(len(rows), float(getattr(self.model.ports[index], kind)))
 
+    def battery(self, bus: str, rows: np.ndarray) -> np.ndarray:
+        """Bus ``bus``'s battery power over ``rows`` (a column's, or the model's)."""
+        if bus in self.batteries:
+            return self.batteries[bus][rows]
+        return np.full(len(rows), float(self.model.buses[bus].battery))
+
     def body(self, index: int) -> int:
         """The column of port ``index``'s body in :meth:`speeds`."""
         return self.bodies[self.model.body_of[self.model.ports[index].component]]
@@ -74,17 +81,20 @@ class RowValues:
 class Batch:
     """Rows of the cycle (indices ``rows``) prepared for a :class:`PlainTrain`: the
     bodies' speeds, the loads' torques (the unknowns' columns to be filled), the sweep's
-    values of the points' columns; ``ok`` False where the single solve refuses them."""
+    values of the points' columns, the balanced buses' battery powers; ``ok`` False
+    where the single solve refuses them."""
 
     rows: np.ndarray
     speeds: np.ndarray
     torques: np.ndarray
     values: dict
     ok: np.ndarray
+    batteries: np.ndarray
 
     def take(self, keep: np.ndarray) -> "Batch":
         return Batch(self.rows[keep], self.speeds[keep], self.torques[keep],
-                     {path: v[keep] for path, v in self.values.items()}, self.ok[keep])
+                     {path: v[keep] for path, v in self.values.items()}, self.ok[keep],
+                     self.batteries[keep])
 
 
 @dataclasses.dataclass
@@ -93,7 +103,7 @@ class State:
     solved (``ok``), the elements' driver codes, losses and forces, the ports' torques,
     speeds and powers (``powers``: as the single solve reports them, a train passing no
     power all zeros), the machines' efficiencies, points on their maps and electrical
-    powers, the plain train's loss and each balanced bus's residual."""
+    powers, the plain train's loss, each balanced bus's residual and battery power."""
 
     ok: np.ndarray
     codes: np.ndarray
@@ -109,6 +119,7 @@ class State:
     electrical: np.ndarray
     total_loss: np.ndarray
     residual: np.ndarray
+    batteries: np.ndarray
 
     def take(self, keep: np.ndarray) -> "State":
         return State(**{f.name: getattr(self, f.name)[keep] for f in dataclasses.fields(self)})
@@ -181,7 +192,9 @@ class PlainTrain:
                     given = torques[:, slot] if kind == "torque" else values.value(i, kind, rows)
                     sweep_values[f"ports.{i}.{kind}"] = given
                     ok &= value_allowed(kind, given)
-        return Batch(rows, speeds, torques, sweep_values, ok)
+        batteries = np.stack([values.battery(bus.name, rows) for bus in self.balanced]
+                             + [np.zeros(len(rows))], axis=1)[:, :-1]
+        return Batch(rows, speeds, torques, sweep_values, ok, batteries)
 
     def evaluate(self, batch: Batch, x: np.ndarray) -> State:
         """The plain train at the unknowns' torques ``x`` (``(rows, unknowns)``, every
@@ -244,14 +257,15 @@ class PlainTrain:
         residual = np.zeros((len(ok), len(self.balanced)))
         for j, r in enumerate(bus_residuals([(p.bus, electrical[:, k])
                                              for k, p in enumerate(self.machines)],
-                                            self.balanced)):
+                                            self.balanced, batch.batteries.T)):
             residual[:, j] = r
         losses = np.stack([result.losses[e.link] for e in self.elements], axis=1)
         total = np.asarray(result.total_loss, dtype=float)
         ok &= np.isfinite(raw).all(axis=1) & np.isfinite(residual).all(axis=1) \
             & np.isfinite(losses).all(axis=1) & np.isfinite(total)
         return State(ok, codes, losses, forces, external, speeds, raw, powers,
-                     batch.speeds, efficiency, on_map, electrical, total, residual)
+                     batch.speeds, efficiency, on_map, electrical, total, residual,
+                     batch.batteries)
 
 
 def distinct_rows(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -3,9 +3,9 @@
 
 Evaluates the train at every operating point of a duty cycle (docs/hybrid.md): columns
 ``PORT.speed``, ``PORT.power``, ``PORT.torque`` with units in the header, optional
-``duration [s]`` or ``time [s]`` and ``mode``. Prints the totals (energy in, out and lost
-per element, cycle efficiency, time per mode, rows that lock); ``-o`` writes the per-row
-results as CSV. A row that cannot be solved is an error (exit 2) unless ``--keep-going``
+``BUS.battery``, ``duration [s]`` or ``time [s]`` and ``mode``. Prints the totals (energy
+in, out and lost per element, cycle efficiency, time per mode, rows that lock); ``-o``
+writes the per-row results as CSV (with machines, each machine's and battery's columns). A row that cannot be solved is an error (exit 2) unless ``--keep-going``
 leaves it out of the totals.
 """
 from __future__ import annotations
@@ -21,8 +21,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "cycle", help="a duty cycle: operating points from CSV, energies over the cycle",
         description="Evaluate the train at every row of a CSV of operating points "
-                    "(PORT.speed [rpm], PORT.power [kW], PORT.torque [N*m], duration [s] "
-                    "or time [s], mode) and total the energies over the cycle. A row that "
+                    "(PORT.speed [rpm], PORT.power [kW], PORT.torque [N*m], BUS.battery "
+                    "[kW], duration [s] or time [s], mode) and total the energies over the "
+                    "cycle. A row that "
                     "cannot be solved is an error (exit 2) unless --keep-going.")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("--points", required=True, metavar="POINTS.csv",
@@ -34,7 +35,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("-o", "--output", metavar="FILE.csv",
                         help="write the per-row results as CSV")
     parser.add_argument("--plot", metavar="FILE",
-                        help="plot power in, out and loss over time (.png/.svg/.pdf)")
+                        help="plot power in, out and loss over time; with machines the "
+                             "ports', machines' and batteries' power and the electrical "
+                             "share (.png/.svg/.pdf)")
     parser.set_defaults(handler=run)
 
 
@@ -50,8 +53,10 @@ def run(args: argparse.Namespace) -> int:
     if args.output:
         write_atomically(args.output, lambda tmp: result.to_csv(tmp))
     if figure is not None:
-        fig = new_figure()
-        result.plot(ax=fig.subplots())
+        from powergraph.plot.cycle import cycle_axes, figure_size
+
+        fig = new_figure(figure_size(result))
+        result.plot(ax=cycle_axes(fig, result))
         save_figure(fig, figure, dpi=150, bbox_inches="tight")
     print_json(result.to_dict()) if args.json else print(result.text_report())
     for written in (args.output, figure):

@@ -156,3 +156,9 @@ class Model:
         ports = list(self.ports)
         ports[index] = dataclasses.replace(ports[index], **changes)
         return dataclasses.replace(self, ports=tuple(ports))
+
+    def with_bus(self, name: str, **changes: Any) -> "Model":
+        """A copy with bus ``name`` changed (e.g. ``battery=-5000.0``)."""
+        buses = dict(self.buses)
+        buses[name] = dataclasses.replace(buses[name], **changes)
+        return dataclasses.replace(self, buses=MappingProxyType(buses))

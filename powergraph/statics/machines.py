@@ -218,19 +218,26 @@ def _residuals(result, balanced: list) -> np.ndarray:
     return np.array(bus_residuals(drawn, balanced))
 
 
-def bus_residuals(drawn, balanced: list) -> list:
+def bus_residuals(drawn, balanced: list, batteries=None) -> list:
     """``Σ P_e − P_b`` of each balanced bus, from ``(bus, P_e)`` of each machine in the
-    ports' order (floats, or arrays over many points)."""
+    ports' order (floats, or arrays over many points); ``batteries``, one per balanced
+    bus (floats or arrays), instead of the buses' own."""
     out: dict[str, Any] = {}
     for bus, power in drawn:
         out[bus] = out.get(bus, 0.0) + power
-    return [out.get(bus.name, 0.0) - bus.battery for bus in balanced]
+    if batteries is None:
+        batteries = [bus.battery for bus in balanced]
+    return [out.get(bus.name, 0.0) - battery for bus, battery in zip(balanced, batteries)]
 
 
-def balance_scale(powers, balanced: list):
+def balance_scale(powers, balanced: list, batteries=None):
     """The power the bus residuals are judged against: the largest port power (the last
-    axis of ``powers``), battery power or 1 W."""
-    batteries = max([abs(bus.battery) for bus in balanced], default=0.0)
+    axis of ``powers``), battery power or 1 W; ``batteries`` (an array, the balanced
+    buses on its last axis) instead of the buses' own."""
+    if batteries is None:
+        batteries = max([abs(bus.battery) for bus in balanced], default=0.0)
+    else:
+        batteries = np.max(np.abs(batteries), axis=-1, initial=0.0)
     return np.maximum(np.max(np.abs(powers), axis=-1, initial=1.0), batteries)
 
 

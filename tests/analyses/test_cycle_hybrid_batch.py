@@ -1,6 +1,8 @@
 """Hybrid duty cycles solved together (powergraph.analyses.cycle_hybrid): every row the
 same as its single solve — powers in and out, loss, each element's and machine's loss,
-efficiency, verdict, electrical share, negative split, warnings — and a row that cannot
+efficiency, verdict, electrical share, negative split, warnings, each port's power, each
+machine's speed, torque, mechanical and electrical power and state, each bus's battery
+power (issue 37), with the batteries given per row or not — and a row that cannot
 be solved together (it does not turn, does not settle, its torque is out of range...)
 solved alone, for the single solve's reason.
 
@@ -76,7 +78,31 @@ def _same_as_single(model, text: str, alone: tuple[int, ...] = ()):
     assert list(batched.warned_rows.items()) == list(single.warned_rows.items())
     assert [r.to_dict()["warnings"] for r in batched.rows] == \
         [r.to_dict()["warnings"] for r in single.rows]
+    _same_flows(batched, single)
     return batched, single
+
+
+def _same_flows(batched, single) -> None:
+    """Issue 37: the machine columns of the batched rows are the single solves'."""
+    assert batched.machines and list(batched.machines) == list(single.machines)
+    assert list(batched.port_power) == list(single.port_power)
+    assert list(batched.battery_power) == list(single.battery_power)
+    close = lambda a, b, what: np.testing.assert_allclose(  # noqa: E731
+        a, b, rtol=1e-9, atol=1e-9, equal_nan=True, err_msg=what)
+    for name, column in single.port_power.items():
+        close(batched.port_power[name], column, name)
+    for bus, column in single.battery_power.items():
+        close(batched.battery_power[bus], column, bus)
+    for name, quantities in single.machines.items():
+        assert list(batched.machines[name]) == list(quantities)
+        for key, column in quantities.items():
+            close(batched.machines[name][key], column, f"{name}.{key}")
+        assert batched.machine_states(name) == single.machine_states(name), name
+    # the rows not solved carry no flows, in both
+    for result in (batched, single):
+        for column in [*result.port_power.values(), *result.battery_power.values()]:
+            assert np.isnan(column[result.failed]).all()
+            assert not np.isnan(column[~result.failed]).any()
 
 
 def test_random_rows_are_their_single_solves():
@@ -216,3 +242,40 @@ def test_machines_with_efficiency_maps(tmp_path):
                                                   rng.uniform(-900, 900, 60).tolist()))
     batched, _ = _same_as_single(model, points)
     assert 0 < len(batched.warned_rows["outside-map"]) < 60
+
+
+BATTERY_HEADER = "engine.speed [rpm],engine.power [kW],wheels.speed [rpm],dc.battery [kW]\n"
+
+
+def _battery_points(n: int, seed: int) -> str:
+    """Random rows (as :func:`_random_points`) with the battery's power per row, from
+    8 kW charging to 8 kW discharging."""
+    rng = np.random.default_rng(seed)
+    rows = zip(rng.uniform(1000, 4000, n).tolist(), rng.uniform(5, 50, n).tolist(),
+               rng.uniform(50, 900, n).tolist(), rng.uniform(-8, 8, n).tolist())
+    return BATTERY_HEADER + "".join(f"{e!r},{p!r},{w!r},{b!r}\n" for e, p, w, b in rows)
+
+
+@pytest.mark.parametrize("battery", [0.0, None], ids=["balanced", "free"])
+def test_issue37_a_battery_column_sets_the_bus_per_row(battery):
+    # The model's battery (charge-sustaining, or free) is replaced by each row's; the
+    # batched rows are the single solves of the model with that row's battery.
+    model = _with_battery(pg.load_model(THS), battery)
+    text = _battery_points(60, 37)
+    batched, _ = _same_as_single(model, text)
+    given = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)[:, 3] * 1e3
+    np.testing.assert_allclose(batched.battery_power["dc"], given, rtol=0, atol=0)
+    # each bus balances: what its machines draw is the battery's power, row by row
+    drawn = sum(m["electrical_power"] for m in batched.machines.values())
+    np.testing.assert_allclose(drawn, given, rtol=1e-9, atol=1e-6)
+
+
+def test_issue37_two_buses_each_set_per_row():
+    model = pg.model_from_dict(_two_buses(0.98))
+    rng = np.random.default_rng(6)
+    rows = zip(rng.uniform(1000, 4000, 30).tolist(), rng.uniform(-3000, 3000, 30).tolist(),
+               rng.uniform(-5, 5, 30).tolist(), rng.uniform(-5, 5, 30).tolist())
+    batched, _ = _same_as_single(model, "engine.speed [rpm],wheels.speed [rpm],a.battery [kW],"
+                                 "b.battery [W]\n" + "".join(
+                                     f"{e!r},{w!r},{a!r},{b * 1e3!r}\n" for e, w, a, b in rows))
+    assert list(batched.battery_power) == ["a", "b"]
