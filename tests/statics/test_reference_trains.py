@@ -82,6 +82,7 @@ HAND_TESTED = {
     "zf8hp_8speed.yaml": "tests/statics/test_modes.py::test_published_and_closed_form_ratios",
     "ths2_power_split.yaml": "tests/statics/test_machines.py::"
                              "test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation",
+    "volt_gen1.yaml": "tests/statics/test_hybrid_modes.py (every mode, by hand)",
 }
 
 
