@@ -219,7 +219,9 @@ def test_long_chains(n: int, eta: float) -> None:
 # the ports as declared: the input at its speed, giving out the power the back-driven
 # solve delivers there (a negative input power).
 
-TRANSMISSIONS = [p for p in MODELS if "modes" in load_model(p).__dict__ and load_model(p).modes]
+TRANSMISSIONS = [p for p in MODELS if load_model(p).modes and not load_model(p).buses]
+#: Multi-mode hybrids (modes and machines on buses): test_every_hybrid_mode.
+HYBRIDS = [p for p in MODELS if load_model(p).modes and load_model(p).buses]
 
 
 #: Modes whose closed forms take 5-60 s of sympy each (the factoring of the sign
@@ -390,3 +392,34 @@ def test_the_hybrid_through_every_evaluator_that_takes_it() -> None:
         derive_formulas(model)
     with pytest.raises(ModelError, match="no modes table"):
         gear_table(model)
+
+
+@pytest.mark.parametrize("path, mode", [(p, m) for p in HYBRIDS for m in load_model(p).modes],
+                         ids=lambda v: getattr(v, "stem", v))
+def test_every_hybrid_mode(path: Path, mode: str) -> None:
+    """A multi-mode hybrid's mode (docs/modes.md): its case's answer is the gear table's
+    row and a duty-cycle row's at the same point; the compiled sweep refuses it in one
+    line (machines on buses, or ports the mode leaves inactive)."""
+    import io
+
+    from powergraph.analyses.cycle import cycle
+    from powergraph.analyses.gear_table import gear_table
+    from powergraph.statics.case import TrainCase
+
+    model = load_model(path)
+    point = TrainCase.of(model, mode).point()
+    assert_conservation(point.result)
+    row = {r.mode: r for r in gear_table(model).rows}[mode]
+    _assert_same(row.efficiency, row.verdict, point.result.efficiency, point.verdict,
+                 "gear table")
+    assert [m.to_dict() for m in row.machines] == [m.to_dict() for m in point.result.machines]
+    speeds = [(p.name or p.component, p.speed) for p in point.result.model.ports
+              if p.speed is not None]
+    header = ",".join(f"{name}.speed [rad/s]" for name, _ in speeds)
+    cells = ",".join(repr(w) for _, w in speeds)
+    rows = cycle(model, io.StringIO(f"mode,{header},duration [s]\n{mode},{cells},1\n"))
+    _assert_same(rows.rows[0].efficiency, rows.rows[0].verdict, point.result.efficiency,
+                 point.verdict, "cycle row")
+    with pytest.raises(UsageError):
+        sweep(model, {f"ports.{model.outputs[0].index}.speed": [1.0]}, mode=mode,
+              quiet=True)

@@ -99,6 +99,9 @@ def solve_grid(model: Model, speeds_rpm: np.ndarray, torques: np.ndarray) -> Gri
     A train with a heat balance (``thermal:``) is solved point by point: each point
     settles its own oil temperature, as its single solve does.
     """
+    from powergraph.analyses.sweep.layout import refuse_shared_ports
+
+    refuse_shared_ports(model, "the efficiency grid")
     sense = float(np.sign(solve_speeds(model).ratio or 1.0))
     efficiency, power, taken = (np.full(speeds_rpm.shape, np.nan) for _ in range(3))
     verdicts = np.full(speeds_rpm.shape, -1, dtype=np.int8)

@@ -211,6 +211,11 @@ def efficiency_map(model: Model, torques: Sequence[float], speeds_rpm: Sequence[
     if np.any(speeds == 0.0):
         raise UsageError("input speeds must be non-zero")
     case = TrainCase.of(model, mode)
+    active = case.base_model
+    if len(active.inputs) != 1 or len(active.outputs) != 1:
+        raise UsageError(f"an efficiency map needs one input and one output port; mode "
+                         f"{mode!r} leaves {len(active.inputs)} input(s) and "
+                         f"{len(active.outputs)} output(s) active (docs/modes.md)")
     if case.decides_freewheels or model.thermal is not None:
         emap = _case_map(case, torques, speeds, rated_torque)
     elif any(f.load_dependent for f in friction_meshes(case.gear_model).values()) or any(

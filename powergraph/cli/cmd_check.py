@@ -59,10 +59,15 @@ def _check_modes(args: argparse.Namespace, model) -> int:
     from powergraph.statics.case import TrainCase
     from powergraph.statics.modes import designed_dof
 
+    dofs = {}
     for mode in model.modes:
-        TrainCase.of(model, mode).point().required()
+        case = TrainCase.of(model, mode)
+        case.point().required()
+        dofs[mode] = designed_dof(case.base_model)
+    each = (f"each solves with {next(iter(dofs.values()))} DOF" if len(set(dofs.values())) == 1
+            else "DOF " + ", ".join(f"{m} {d}" for m, d in dofs.items()))
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
           f"{len(model.shift_elements)} shift elements, modes {', '.join(model.modes)}: "
-          f"each solves with {designed_dof(model)} DOF")
+          f"{each}")
     print_caveats(model.warnings)
     return 0

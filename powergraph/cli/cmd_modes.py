@@ -12,14 +12,17 @@ from powergraph.cli.common import (
     save_figure,
     say_wrote,
 )
-from powergraph.errors import ModelError
+from powergraph.errors import ModelError, UsageError
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("modes", help="gear table of a train with modes",
                             description="Per mode: engaged elements, ratio, step, "
                                         "efficiency forward and coasting, element torques, "
-                                        "slip speeds, drag; the spread (docs/modes.md).")
+                                        "slip speeds, drag; the spread. For a hybrid: each "
+                                        "mode's DOF, inactive ports, speed relation, "
+                                        "machines, battery power and electrical share "
+                                        "(docs/modes.md).")
     parser.add_argument("model", help="model file (YAML) with a modes table")
     parser.add_argument("--json", action="store_true", help="print the JSON object")
     parser.add_argument("-o", "--output", metavar="FILE",
@@ -37,6 +40,12 @@ def run(args: argparse.Namespace) -> int:
     if not model.modes:
         raise ModelError("the model has no modes table (docs/modes.md)", "modes")
     table = gear_table(model)
+    if target is not None:
+        several = [r for r in table.rows if r.ratio is None]
+        if several:
+            raise UsageError(f"-o: the chart draws each mode's ratio; mode "
+                             f"{several[0].mode!r} has {several[0].dof} DOF (no single "
+                             "ratio): see its speed relation in the table or --json")
     print_json(table.to_dict()) if args.json else print(table.text_report())
     if target is not None:
         ax = new_axes((7.0, 4.2))

@@ -253,8 +253,11 @@ def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) ->
             if component not in model.components:
                 raise KinematicsError(f"speed given for unknown component {component!r}")
     else:
-        given = {p.component: p.speed for p in model.ports if p.speed is not None}
+        given = _port_speeds(model)
         if not given and dof == 1:
+            if not model.inputs:
+                raise KinematicsError("no port gives a speed and no input is active: give "
+                                      "the speed of a port", "ports")
             given = {model.inputs[0].component: 1.0}
     if len(given) != dof:
         plural = "s" if dof != 1 else ""
@@ -262,6 +265,34 @@ def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) ->
             f"train has {dof} degree{plural} of freedom but {len(given)} speed"
             f"{'s were' if len(given) != 1 else ' was'} given"
             + ("" if len(given) > dof else " (give a speed on more ports)"))
+    return given
+
+
+#: Two ports on one rigid body give the same speed when they agree to this (relative).
+SAME_SPEED_RTOL = 1e-9
+
+
+def _port_speeds(model: Model) -> dict[str, float]:
+    """The ports' own speeds, one per rigid body: ports on one body (an engine and a
+    machine on one shaft) must give the same speed."""
+    given: dict[str, float] = {}
+    first: dict[str, object] = {}
+    for port in model.ports:
+        if port.speed is None:
+            continue
+        body = model.body_of[port.component]
+        if body not in first:
+            first[body] = port
+            given[port.component] = port.speed
+            continue
+        other = first[body]
+        if abs(port.speed - other.speed) > SAME_SPEED_RTOL * max(abs(port.speed),
+                                                                 abs(other.speed)):
+            raise KinematicsError(
+                f"{model.port_label(other.index)} gives {other.speed:.6g} rad/s and "
+                f"{model.port_label(port.index)} {port.speed:.6g} rad/s, but they are on one rigid "
+                f"body {body!r}: give the speed once, or speeds that agree",
+                f"{port.path}.speed")
     return given
 
 

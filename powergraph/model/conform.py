@@ -255,7 +255,7 @@ def _object_checker(schema: dict) -> Callable[[dict, str], None]:
             elif extra_check is not None:
                 extra_check(item, f"{path}.{key}" if path else str(key))
             elif extra is False:
-                raise ModelError(f"unknown field (allowed: {allowed})", join_path(path, key))
+                raise ModelError(_unknown(key, allowed), join_path(path, key))
         for key in required:
             if key not in value:
                 raise ModelError(_missing(schema, key), join_path(path, key))
@@ -263,6 +263,24 @@ def _object_checker(schema: dict) -> Callable[[dict, str], None]:
             raise ModelError(f"must have at least {least} entry", path)
 
     return check
+
+
+def _unknown(key: Any, allowed: str) -> str:
+    """``unknown field (allowed: ...)``; for a key YAML 1.1 read as a boolean (``off:``,
+    ``on:``, ``yes:``, ``no:``), why.
+
+    >>> _unknown(False, "buses, engage, inactive, ports")
+    'unknown field: a key read as the boolean false (YAML 1.1 reads off, on, yes, no, true \
+and false unquoted as booleans; ports that carry nothing in a mode are listed under \
+inactive) (allowed: buses, engage, inactive, ports)'
+    """
+    if not isinstance(key, bool):
+        return f"unknown field (allowed: {allowed})"
+    hint = ("; ports that carry nothing in a mode are listed under inactive"
+            if "inactive" in allowed.split(", ") else "")
+    return (f"unknown field: a key read as the boolean {str(key).lower()} (YAML 1.1 reads "
+            f"off, on, yes, no, true and false unquoted as booleans{hint}) (allowed: "
+            f"{allowed})")
 
 
 def _missing(schema: dict, key: str) -> str:

@@ -73,7 +73,10 @@ def unique_name(candidate: str, taken: Collection[str]) -> str:
 
 
 def check_topology(model: Model) -> None:
-    """Checks that need bodies: a mesh or coupling inside one rigid body is an error."""
+    """Checks that need bodies: a mesh or coupling inside one rigid body is an error, and
+    so is an active port on the frame's body. Several ports may share a rigid body (an
+    engine and a machine on one shaft): the solve checks that the speeds they give agree
+    and that their loads are determined (docs/modes.md)."""
     for link in model.links:
         if link.type not in ("mesh", "coupling"):
             continue
@@ -83,16 +86,32 @@ def check_topology(model: Model) -> None:
                              "(joined by fixed links), so they cannot mesh or couple",
                              f"{link.path}.between")
     for port in model.ports:
+        if port.index in model.inactive:
+            continue
         if model.body_of[port.component] == model.frame_body:
             raise ModelError(f"component {port.component!r} is fixed to the frame, so it cannot "
                              "be a port", f"{port.path}.component")
-    port_bodies: dict[str, int] = {}
+
+
+def shared_port_bodies(model: Model) -> dict[str, tuple[int, ...]]:
+    """``{body: port indices}`` of the bodies that carry more than one active port.
+
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "p1", "components": {0: {"role": "frame"},
+    ...     "e": {}, "a": {"teeth": 20}, "w": {"teeth": 40}},
+    ...     "links": [{"type": "fixed", "between": ["e", "a"]},
+    ...               {"type": "mesh", "between": ["a", "w"]}],
+    ...     "ports": [{"component": "e", "role": "input", "speed": 10, "power": 100},
+    ...               {"component": "a", "role": "input", "power": 50},
+    ...               {"component": "w", "role": "output"}]})
+    >>> shared_port_bodies(m)
+    {'e/a': (0, 1)}
+    """
+    found: dict[str, list[int]] = {}
     for port in model.ports:
-        body = model.body_of[port.component]
-        if body in port_bodies:
-            raise ModelError(f"ports[{port_bodies[body]}] and this port are on the same rigid "
-                             f"body {body!r}", f"{port.path}.component")
-        port_bodies[body] = port.index
+        if port.index not in model.inactive:
+            found.setdefault(model.body_of[port.component], []).append(port.index)
+    return {body: tuple(ports) for body, ports in found.items() if len(ports) > 1}
 
 
 def to_networkx(model: Model) -> "nx.MultiGraph":

@@ -18,6 +18,7 @@ Examples
 from __future__ import annotations
 
 import dataclasses
+from types import MappingProxyType
 from typing import Iterable, Mapping
 
 from powergraph.errors import ModelError
@@ -60,9 +61,13 @@ def resolve(model: Model, mode: str | None,
     Returns
     -------
     Model
-        A new model whose ``links`` hold each shift element as ``fixed`` (engaged) or
-        ``bearing`` (open), with its bodies rebuilt, ``mode`` set and the mode in its name
-        (``Simpson 3-speed [R]``).
+        A new model at the mode's operating point
+        (:func:`powergraph.model.mode_specs.at_mode_point`: its inactive ports carrying
+        nothing, the ports and buses it gives), whose ``links`` hold each shift element as
+        ``fixed`` (engaged) or ``bearing`` (open), with its bodies rebuilt, ``mode`` set
+        and the mode in its name (``Simpson 3-speed [R]``). Components joined to no active
+        port and not to the frame are ``idle`` (:func:`idle_components`): held in the
+        frame's body, their links carrying nothing.
 
     Raises
     ------
@@ -71,16 +76,23 @@ def resolve(model: Model, mode: str | None,
         port held by a brake, a mesh inside one rigid body...).
     """
     from powergraph.model.graph import bodies_of, check_topology
+    from powergraph.model.mode_specs import at_mode_point
     from powergraph.model.shift import as_link
 
     names = set(engaged_in(model, mode) if mode is not None else (engaged or ()))
+    model = at_mode_point(model, mode)
     names |= {n for n, on in (freewheels or {}).items() if on}
     links = list(model.links)
     for element in model.shift_elements:
         links[element.index] = as_link(element, element.name in names)
     bodies, body_of = bodies_of(model.components, tuple(links))
+    idle = idle_components(model, links, bodies, body_of)
+    components = model.components
+    if idle:
+        links, components, bodies, body_of = _held_idle(model, links, bodies, body_of, idle)
     derived = dataclasses.replace(model, links=tuple(links), bodies=bodies,
                                   body_of=body_of, mode=mode, resolved=True,
+                                  components=components, idle=frozenset(idle),
                                   name=model.name if mode is None else f"{model.name} [{mode}]")
     try:
         check_topology(derived)
@@ -88,6 +100,74 @@ def resolve(model: Model, mode: str | None,
         where = mode_path(mode) if mode is not None else error.path
         raise ModelError(f"engages {_listing(names)}: {error.message}", where) from None
     return derived
+
+
+def idle_components(model: Model, links, bodies, body_of: Mapping[str, str]) -> set[str]:
+    """The components joined to no active port and not to the frame (docs/modes.md):
+    the bodies of ``links`` (meshes joining their two gears and carrier, couplings and
+    freewheels — held or not — their two members) grouped, and every group without the
+    frame's body or an active port's body.
+
+    Examples
+    --------
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "x", "components": {0: {"role": "frame"},
+    ...     1: {"teeth": 20}, 2: {"teeth": 40}, "e": {}},
+    ...     "links": [{"type": "mesh", "between": [1, 2]},
+    ...               {"type": "clutch", "name": "C", "between": ["e", 1]}],
+    ...     "ports": [{"component": "e", "role": "input"}, {"component": 1, "role": "input"},
+    ...               {"component": 2, "role": "output"}]})
+    >>> sorted(idle_components(m, m.links, m.bodies, m.body_of))
+    []
+    >>> sorted(idle_components(dataclasses.replace(m, inactive=frozenset({0})), m.links,
+    ...                        m.bodies, m.body_of))
+    ['e']
+    """
+    root = {b.id: b.id for b in bodies}
+
+    def find(x: str) -> str:
+        while root[x] != x:
+            root[x] = root[root[x]]
+            x = root[x]
+        return x
+
+    def join(*members: str) -> None:
+        first = find(body_of[members[0]])
+        for other in members[1:]:
+            root[find(body_of[other])] = first
+
+    kinds = {e.index: e.kind for e in model.shift_elements}
+    for link in links:
+        if link.type == "mesh":
+            join(link.between[0], link.between[1], link.carrier)
+        elif link.type == "coupling" or kinds.get(link.index) == "freewheel":
+            join(*link.between)
+    live = {find(body_of[model.frame])} | {find(body_of[p.component]) for p in model.ports
+                                           if p.index not in model.inactive}
+    return {c for c in model.components if find(body_of[c]) not in live}
+
+
+def _held_idle(model: Model, links: list, bodies, body_of, idle: set[str]):
+    """The idle components held in the frame's body (it keeps its name), their links
+    carrying nothing (a ``bearing`` without losses at the same place: a mesh or coupling
+    among them, a bearing's or an open element's drag, a seal) and their own drag and
+    churning left out: nothing loads them, so they turn at no speed the train sets."""
+    from powergraph.model.spec_parts import Body, Link
+
+    for i, link in enumerate(links):
+        if link.type != "fixed" and idle & {*link.between, link.carrier}:
+            links[i] = Link(index=link.index, type="bearing", between=link.between,
+                            raw_between=link.raw_between, name=link.name)
+    components = MappingProxyType({
+        c: dataclasses.replace(comp, drag=None, churning=None) if c in idle else comp
+        for c, comp in model.components.items()})
+    frame = next(b for b in bodies if b.is_frame)
+    members = tuple(c for c in model.components if body_of[c] == frame.id or c in idle)
+    held = Body(id=frame.id, members=members, is_frame=True)
+    bodies = tuple(held if b.is_frame else b for b in bodies
+                   if b.is_frame or not idle & set(b.members))
+    body_of = MappingProxyType({c: frame.id if c in idle else b for c, b in body_of.items()})
+    return links, components, bodies, body_of
 
 
 def _listing(names: Iterable[str]) -> str:

@@ -12,6 +12,9 @@ POSITIVE, NON_NEGATIVE = "positive", "non-negative"
 MAX_SPEED = 1e6        # rad/s (about 10^7 rpm)
 MAX_POWER = 1e12       # W
 MAX_TORQUE = 1e12      # N·m
+#: The largest port values (SI) and their units, as the schema bounds them in files.
+PORT_RANGES = {"speed": (MAX_SPEED, "rad/s"), "power": (MAX_POWER, "W"),
+               "torque": (MAX_TORQUE, "N*m")}
 MAX_LENGTH = 1e6       # mm
 MAX_TEETH = 100_000
 MAX_COUNT = 10_000

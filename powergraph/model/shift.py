@@ -71,23 +71,26 @@ def check_names(elements: tuple[ShiftElement, ...]) -> None:
 
 def read_modes(raw: Any, elements: tuple[ShiftElement, ...]) -> Mapping[str, tuple[str, ...]]:
     """``modes`` as ``{name: engaged element names}``, every name known and not a freewheel
-    (freewheels decide for themselves), none twice."""
+    (freewheels decide for themselves), none twice. A mode is a list of names or a
+    mapping whose ``engage`` lists them (its other keys: :mod:`powergraph.model.mode_specs`)."""
     by_name = {e.name: e for e in elements}
     modes: dict[str, tuple[str, ...]] = {}
-    for mode, names in raw.items():
+    for mode, entry in raw.items():
         path = f"modes.{mode}"
+        names, where = (entry.get("engage") or [], f"{path}.engage") \
+            if isinstance(entry, Mapping) else (entry, path)
         engaged: list[str] = []
         for i, name in enumerate(names):
             name = str(name)
             if name not in by_name:
                 known = ", ".join(by_name) or "none"
                 raise ModelError(f"unknown shift element {name!r} (the model's: {known})",
-                                 f"{path}[{i}]")
+                                 f"{where}[{i}]")
             if by_name[name].kind == "freewheel":
                 raise ModelError(f"{name} is a freewheel: it engages by itself, do not "
-                                 "list it", f"{path}[{i}]")
+                                 "list it", f"{where}[{i}]")
             if name in engaged:
-                raise ModelError(f"{name} is listed twice", f"{path}[{i}]")
+                raise ModelError(f"{name} is listed twice", f"{where}[{i}]")
             engaged.append(name)
         modes[name_text(mode, path, "mode name")] = tuple(engaged)
     return MappingProxyType(modes)

@@ -17,11 +17,11 @@ from types import MappingProxyType
 from typing import Any, Mapping
 
 from powergraph.model.spec_parts import (LINK_TYPES, SHIFT_TYPES, Body, Bus, Component, Link,
-                                         Port, ShiftElement)
+                                         ModeSpec, Port, ShiftElement)
 from powergraph.records import record
 
-__all__ = ["LINK_TYPES", "SHIFT_TYPES", "Body", "Bus", "Component", "Link", "Model", "Port",
-           "ShiftElement"]
+__all__ = ["LINK_TYPES", "SHIFT_TYPES", "Body", "Bus", "Component", "Link", "Model", "ModeSpec",
+           "Port", "ShiftElement"]
 
 
 @record
@@ -57,6 +57,20 @@ class Model:
     lubricant: Any = None
     #: The heat balance (powergraph.model.lubricant.Thermal), None without ``thermal:``.
     thermal: Any = None
+    #: ``{mode name: ModeSpec}``: each mode's engaged elements, inactive ports and
+    #: operating point (docs/modes.md); empty without modes.
+    mode_specs: Mapping[str, ModeSpec] = field(default_factory=lambda: MappingProxyType({}))
+    #: Indices of the ports the mode this model is in leaves inactive: they stay in
+    #: ``ports`` (their places do not move) carrying nothing (torque 0, no speed), and
+    #: are left out of ``inputs``, ``outputs`` (docs/modes.md).
+    inactive: frozenset = frozenset()
+    #: Components the mode leaves idle: joined to no active port and not to the frame
+    #: (a declutched engine shaft). They turn at no speed the train sets: the solve
+    #: holds them in the frame's body, with no load, and reports their speed as None.
+    idle: frozenset = frozenset()
+    #: The mode whose operating point (ports, buses, inactive ports) this model is at
+    #: (powergraph.model.modes.at_mode_point), else None.
+    point_of: str | None = field(default=None, compare=False)
 
     # Derived views are computed once per model (cached_property writes the instance's
     # __dict__, which a frozen dataclass allows), so loops over a large model stay linear.
@@ -98,15 +112,25 @@ class Model:
 
     @cached_property
     def inputs(self) -> tuple[Port, ...]:
-        return tuple(p for p in self.ports if p.role == "input")
+        """The active input ports (an inactive one, docs/modes.md, is left out)."""
+        return tuple(p for p in self.ports if p.role == "input" and p.index not in self.inactive)
 
     @cached_property
     def outputs(self) -> tuple[Port, ...]:
-        return tuple(p for p in self.ports if p.role == "output")
+        """The active output ports."""
+        return tuple(p for p in self.ports if p.role == "output"
+                     and p.index not in self.inactive)
+
+    def port_label(self, index: int) -> str:
+        """``ports[2] (MG1)``, or ``ports[0] (component 1)`` for a port without a name."""
+        port = self.ports[index]
+        return (f"{port.path} ({port.name})" if port.name else
+                f"{port.path} (component {self.raw_id(port.component)})")
 
     @cached_property
     def machines(self) -> tuple[Port, ...]:
-        """The ports with ``role: machine`` (electric machines on buses)."""
+        """The ports with ``role: machine`` (electric machines on buses), inactive ones
+        too: a solve reports each machine, an inactive one as ``inactive``."""
         return tuple(p for p in self.ports if p.role == "machine")
 
     @cached_property

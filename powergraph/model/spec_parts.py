@@ -108,6 +108,32 @@ class ShiftElement:
 
 
 @record
+class ModeSpec:
+    """One entry of the modes table (docs/modes.md): the clutches and brakes it engages,
+    the ports it leaves ``inactive`` (indices into ``Model.ports``: they carry nothing in
+    the mode), and its operating point: ``ports`` ``{port index: {field: value}}`` with
+    ``field`` ``speed``, ``power`` or ``torque`` (SI; None for ``free``: the mode drops
+    the model's value) and ``buses`` ``{bus name: battery power}`` (W; None for
+    ``free``). A mode written as a plain list engages its elements and changes nothing
+    else.
+
+    >>> ModeSpec(engaged=("C1",), inactive=(0,)).changes_point
+    True
+    """
+
+    engaged: tuple[str, ...]
+    inactive: tuple[int, ...] = ()
+    ports: Mapping[int, Mapping[str, float | None]] = field(
+        default_factory=lambda: MappingProxyType({}))
+    buses: Mapping[str, float | None] = field(default_factory=lambda: MappingProxyType({}))
+
+    @property
+    def changes_point(self) -> bool:
+        """The mode changes the model's ports or buses (not only its shift elements)."""
+        return bool(self.inactive or self.ports or self.buses)
+
+
+@record
 class Port:
     """Where power enters (``input``) or leaves (``output``) the train."""
 

@@ -18,14 +18,11 @@ from powergraph.errors import Caveat, ModelError
 from powergraph.model.buses import buses_of, machine_fields
 from powergraph.model.conform import check_document
 from powergraph.model.names import name_text, optional_name
-from powergraph.model.schema_parts import MAX_POWER, MAX_SPEED, MAX_TORQUE
+from powergraph.model.schema_parts import PORT_RANGES  # noqa: F401 (re-exported)
 from powergraph.model.spec import SHIFT_TYPES, Component, Link, Model, Port
 from powergraph.model.units import bare_speed_caveat, parse_quantity
 from powergraph.model.yaml_loader import brief, gc_paused
 
-#: The largest port values (SI) and their units, as the schema bounds them in files.
-PORT_RANGES = {"speed": (MAX_SPEED, "rad/s"), "power": (MAX_POWER, "W"),
-               "torque": (MAX_TORQUE, "N*m")}
 
 
 def check_port_ranges(model: Model, speeds: Mapping[str, float] | None = None) -> None:
@@ -95,13 +92,19 @@ def _model(data: Any, source: str | None) -> Model:
     from powergraph.model.graph import bodies_of, check_topology
 
     bodies, body_of = bodies_of(components, links)
+    buses = buses_of(data.get("buses"), ports)
+    specs = MappingProxyType({})
+    if modes:
+        from powergraph.model.mode_specs import read_mode_specs
+
+        specs = read_mode_specs(data["modes"], modes, ports, buses)
     model = Model(name=name_text(data["name"], "name", "model name"),
                   description=_text(data.get("description")),
                   components=MappingProxyType(components), links=links, ports=ports,
                   bodies=bodies, body_of=MappingProxyType(body_of), source=source,
                   shift_elements=shift_elements, modes=modes,
                   mode=next(iter(modes), None), warnings=tuple(caveats),
-                  buses=buses_of(data.get("buses"), ports), **_oil(data))
+                  buses=buses, mode_specs=specs, **_oil(data))
     model = _bind_oil(model)
     if modes:
         model = _default_state(model)
@@ -161,6 +164,7 @@ def _default_state(model: Model) -> Model:
     """The model in its default state: the first mode with its freewheels holding, or
     overrunning where holding them all would join what cannot be joined (a freewheel
     between the input and the output, or holding a port); errors name the mode."""
+    from powergraph.model.graph import bodies_of
     from powergraph.model.modes import resolve
 
     try:
@@ -169,8 +173,10 @@ def _default_state(model: Model) -> Model:
         return model
     except ModelError:
         overrunning = resolve(model, model.mode)      # the mode's own error, if any
-    return dataclasses.replace(model, links=overrunning.links, bodies=overrunning.bodies,
-                               body_of=overrunning.body_of)
+    # the links of the mode, the ports as loaded (the mode's point is the case's)
+    bodies, body_of = bodies_of(model.components, overrunning.links)
+    return dataclasses.replace(model, links=overrunning.links, bodies=bodies,
+                               body_of=MappingProxyType(body_of))
 
 
 def _shift_elements(data: Mapping, links: tuple, components: Mapping[str, Component],
@@ -342,8 +348,10 @@ def _ports(raw: list, components: Mapping[str, Component],
         if components[component].is_frame:
             raise ModelError("the frame cannot be a port (it does not turn)", f"{path}.component")
         if component in seen:
-            raise ModelError(f"component {component!r} already has a port (ports[{seen[component]}])",
-                             f"{path}.component")
+            raise ModelError(f"component {component!r} already has a port "
+                             f"(ports[{seen[component]}]); for two ports on one shaft, put "
+                             "this one on a component of its own joined to it by a fixed "
+                             "link", f"{path}.component")
         seen[component] = index
         if "power" in item and "torque" in item:
             raise ModelError("give at most one of power and torque", path)

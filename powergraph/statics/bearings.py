@@ -250,8 +250,7 @@ def with_bearings(model: Model, result: Any, states: tuple[BearingState, ...],
     speeds = result.kinematics.body_speeds
 
     def fed(port) -> float:
-        body = model.body_of[port.component]
-        return external.get(body, 0.0) * speeds[body]
+        return result.port_torque(port.index) * speeds[model.body_of[port.component]]
 
     input_power = sum(fed(p) for p in model.inputs)
     output_power = -sum(fed(p) for p in model.outputs)

@@ -115,6 +115,10 @@ class TrainCase:
         if model.modes and mode not in model.modes:
             raise UsageError(f"--mode {mode}: unknown mode (the model's modes: "
                              + ", ".join(model.modes) + ")")
+        if backdrive and model.modes and model.machines:
+            raise UsageError("--backdrive: a hybrid with modes regenerates through its "
+                             "machines, not its engine: give the mode a negative output "
+                             "power instead (docs/modes.md)")
         if backdrive and (len(model.inputs) != 1 or len(model.outputs) != 1):
             raise UsageError("--backdrive needs a train with one input and one output "
                              f"port (this one has {len(model.inputs)} and "
@@ -180,7 +184,10 @@ class TrainCase:
 
     def point(self, model: Model | None = None) -> CasePoint:
         """The answer at the case's operating point, or at ``model``: a variant of the
-        case's model (other values, the same train), e.g. one row of a duty cycle.
+        case's model (other values, the same train), e.g. one row of a duty cycle. A mode
+        that sets ports or buses (docs/modes.md) sets those the variant leaves as the
+        model has them: the variant's own values come first, then the mode's, then the
+        model's (:func:`powergraph.model.mode_specs.at_mode_point`).
 
         Raises
         ------
@@ -203,6 +210,11 @@ class TrainCase:
         return self._solve(dataclasses.replace(model, ports=ports, name=name))
 
     def _solve(self, model: Model) -> CasePoint:
+        if self.mode is not None and model is not self.model:
+            # a variant's own values first, then the mode's, then the model's
+            from powergraph.model.mode_specs import at_mode_point
+
+            model = at_mode_point(model, self.mode, loaded=self.model)
         if not self.shifting:
             from powergraph.statics.solver import solve
 

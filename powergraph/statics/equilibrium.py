@@ -28,6 +28,10 @@ class Loads(NamedTuple):
     given: dict[str, float]
     unknown: tuple[str, ...]  # bodies whose external torque is solved for (ports, frame)
     needed: int               # how many port loads the train takes: ports - DOF
+    #: The given torque of each loaded port, by port index (a body with several ports
+    #: that are all loaded has their sum in ``given``; one with an unloaded port is among
+    #: the unknowns, and its loaded ports' torques are here only).
+    ports: Mapping[int, float] = MappingProxyType({})
 
 
 def port_torque(value, kind: str, role: str, speed):
@@ -48,30 +52,90 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
     """External torques from the ports' power/torque (sign conventions of docs/format.md).
 
     An input's power is what it feeds in (``T = P/w``); an output's power is what it takes
-    out (``T = -P/w``). With no power or torque anywhere, the first input feeds 1 W.
+    out (``T = -P/w``). With no power or torque anywhere, the first input feeds 1 W. An
+    inactive port (docs/modes.md) carries nothing and is not counted. Several ports may
+    share a rigid body when at most one of them has no load: the body's external torque
+    is then that port's plus the others' (:func:`port_torques`).
+
+    Raises
+    ------
+    StaticsError
+        A power on a port that does not turn; two unloaded ports on one rigid body.
     """
-    given: dict[str, float] = {}
-    loaded = [p for p in model.ports if p.power is not None or p.torque is not None]
+    active = [p for p in model.ports if p.index not in model.inactive]
+    loaded = [p for p in active if p.power is not None or p.torque is not None]
     if not loaded:
+        if not model.inputs:
+            raise StaticsError("no port has a load and no input is active: give the power "
+                               "or torque of a port", "ports")
         first = model.inputs[0]
         loaded_values = [(first, 1.0, None)]
     else:
         loaded_values = [(p, p.power, p.torque) for p in loaded]
+    by_port: dict[int, float] = {}
     for port, power, torque in loaded_values:
-        body = model.body_of[port.component]
         if torque is not None:
-            given[body] = torque
+            by_port[port.index] = torque
             continue
         speed = kin.speed(port.component)
         if abs(speed) < 1e-12:
             raise StaticsError("a power is given but the component does not turn "
                                "(speed 0), so its torque is unknown; give a torque instead",
                                f"{port.path}.power")
-        given[body] = port_torque(power, "power", port.role, speed)
-    unknown = [model.body_of[p.component] for p in model.ports
-               if model.body_of[p.component] not in given]
+        by_port[port.index] = port_torque(power, "power", port.role, speed)
+    unknown: dict[str, int] = {}
+    for port in active:
+        if port.index in by_port:
+            continue
+        body = model.body_of[port.component]
+        if body in unknown:
+            raise StaticsError(
+                f"{model.port_label(unknown[body])} and {model.port_label(port.index)} are "
+                f"on one rigid body {body!r} and neither has a load: the torque balance "
+                "gives only their sum; give the power or torque of one of them",
+                f"{port.path}.component")
+        unknown[body] = port.index
+    given: dict[str, float] = {}
+    for index, torque in by_port.items():
+        body = model.body_of[model.ports[index].component]
+        if body not in unknown:
+            given[body] = given.get(body, 0.0) + torque
     return Loads(given=given, unknown=tuple(unknown) + (model.frame_body,),
-                 needed=len(model.ports) - kin.dof)
+                 needed=len(active) - kin.dof, ports=MappingProxyType(by_port))
+
+
+def port_torques(model: Model, loads: Loads, external: Mapping[str, float]
+                 ) -> tuple[float, ...]:
+    """The external torque of each port (by its place in ``model.ports``, N·m): a
+    loaded port's own, an unloaded one's its body's external torque less the other ports'
+    on that body, an inactive port's 0.
+
+    >>> from powergraph.model import model_from_dict
+    >>> m = model_from_dict({"name": "p1", "components": {0: {"role": "frame"},
+    ...     "e": {}, "a": {"teeth": 20}, "w": {"teeth": 40}},
+    ...     "links": [{"type": "fixed", "between": ["e", "a"]},
+    ...               {"type": "mesh", "between": ["a", "w"]}],
+    ...     "ports": [{"component": "e", "role": "input", "speed": 10, "torque": 3},
+    ...               {"component": "a", "role": "input", "torque": 2},
+    ...               {"component": "w", "role": "output"}]})
+    >>> port_torques(m, Loads({"e/a": 5.0}, ("w", "0"), 1, {0: 3.0, 1: 2.0}),
+    ...              {"e/a": 5.0, "w": -10.0, "0": 5.0})
+    (3.0, 2.0, -10.0)
+    """
+    others: dict[str, float] = {}
+    for index, torque in loads.ports.items():
+        body = model.body_of[model.ports[index].component]
+        others[body] = others.get(body, 0.0) + torque
+    out = []
+    for port in model.ports:
+        if port.index in loads.ports:
+            out.append(float(loads.ports[port.index]))
+        elif port.index in model.inactive:
+            out.append(0.0)
+        else:
+            body = model.body_of[port.component]
+            out.append(float(external.get(body, 0.0)) - others.get(body, 0.0) + 0.0)
+    return tuple(out)
 
 
 class Equilibrium(NamedTuple):

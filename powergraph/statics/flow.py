@@ -147,10 +147,10 @@ def flow_edges(result: "PowerFlowResult", frame: str | None = None) -> list[Flow
     loss = Node(LOSS, LOSS)
     edges: list[Flow] = []
     for port in model.ports:
-        if port.role == MACHINE:
+        if port.role == MACHINE or port.index in model.inactive:
             continue
         body = model.body_of[port.component]
-        power = result.external_torques.get(body, 0.0) * (kin.body_speeds[body] - w_f)
+        power = result.port_torque(port.index) * (kin.body_speeds[body] - w_f)
         node, at = port_node(result, port.component, port.role), body_node(result, body)
         edges.append(_oriented(node, at, power) if port.role == "input"
                      else _oriented(at, node, -power))
@@ -183,6 +183,8 @@ def machine_edges(result: "PowerFlowResult", w_f: float = 0.0) -> list[Flow]:
     from a moving body, the stator's reaction on the housing too."""
     model, edges, loss = result.model, [], Node(LOSS, LOSS)
     for machine in result.machines:
+        if not machine.active:
+            continue
         node, bus = Node(MACHINE, machine.name), Node(BUS, machine.bus)
         body = model.body_of[machine.component]
         edges.append(_oriented(node, body_node(result, body),

@@ -93,10 +93,17 @@ class MachineFlow:
     power: float
     electrical_power: float
     on_map: bool = True
+    #: False for a machine its mode leaves inactive (docs/modes.md): it carries nothing.
+    active: bool = True
+    #: True when its rotor is idle (joined to no active port nor the frame): no speed.
+    idle: bool = False
 
     @property
     def state(self) -> str:
-        """``motoring``, ``generating`` or ``idle``."""
+        """``motoring``, ``generating``, ``idle`` (no power) or ``inactive`` (its mode
+        switches it off)."""
+        if not self.active:
+            return "inactive"
         return "motoring" if self.power > 0 else ("generating" if self.power < 0 else "idle")
 
     @property
@@ -105,7 +112,8 @@ class MachineFlow:
 
     def to_dict(self, raw: Callable = str) -> dict[str, Any]:
         return {"name": self.name, "component": raw(self.component), "bus": self.bus,
-                "speed": self.speed, "torque": self.torque, "power": self.power,
+                "speed": None if self.idle else self.speed, "torque": self.torque,
+                "power": self.power,
                 "electrical_power": self.electrical_power, "state": self.state,
                 "loss": self.loss, "efficiency": self.efficiency}
 
@@ -162,8 +170,9 @@ def _given(port: Port) -> bool:
 
 
 def _check_count(model: Model, kin, balanced: list) -> None:
-    needed = len(model.ports) - kin.dof
-    given = sum(_given(p) for p in model.ports)
+    active = [p for p in model.ports if p.index not in model.inactive]
+    needed = len(active) - kin.dof
+    given = sum(_given(p) for p in active)
     if given + len(balanced) == needed:
         return
     buses = ", ".join(b.path for b in balanced) or "none"
@@ -181,6 +190,8 @@ def _choose_unknowns(base: Model, balanced: list, kin, plain_solve) -> tuple[lis
     """For each balanced bus, the index of a machine port whose torque is the unknown:
     one without a given load, turning, with which the train is determined; and the solve
     with those torques 0."""
+    if not balanced:        # no bus balance: the plain train, its own errors
+        return [], plain_solve(base)
     options = []
     for bus in balanced:
         free = [p.index for p in base.ports if p.bus == bus.name and not _given(p)
@@ -324,11 +335,13 @@ def _with_machines(model: Model, result):
 
 def _machine_flow(model: Model, port: Port, flow) -> MachineFlow:
     efficiency, on_map = machine_efficiency(port, flow.speed, flow.torque)
+    active = port.index not in model.inactive
     return MachineFlow(name=machine_name(port, model), component=port.component,
                        bus=port.bus, efficiency=efficiency, speed=flow.speed,
                        torque=flow.torque, power=flow.power,
                        electrical_power=electrical_power(flow.power, efficiency) + 0.0,
-                       on_map=on_map)
+                       on_map=on_map or not active, active=active,
+                       idle=port.component in model.idle)
 
 
 def machine_caveats(result) -> tuple[Caveat, ...]:
@@ -338,6 +351,8 @@ def machine_caveats(result) -> tuple[Caveat, ...]:
     :data:`SPEED_RTOL`)."""
     caveats = []
     for machine, port in zip(result.machines, result.model.machines):
+        if not machine.active:
+            continue
         label = (f"{port.path} ({port.name})" if port.name else
                  f"{port.path} (component {result.model.raw_id(port.component)})")
         if not machine.on_map:

@@ -32,6 +32,7 @@ from typing import Any, Mapping
 
 from powergraph.errors import Caveat, KinematicsError, ModelError
 from powergraph.kinematics.speeds import degrees_of_freedom
+from powergraph.model.mode_specs import at_mode_point
 from powergraph.model.modes import engaged_in, freewheel_groups, mode_path, resolve
 from powergraph.model.spec import Model
 from powergraph.records import record
@@ -54,7 +55,8 @@ class ShiftState:
     ``state`` is ``engaged``, ``open``, ``holding`` / ``overrunning`` (freewheels) or
     ``idle`` (a freewheel whose members are already joined rigidly); ``torque`` (N·m) is
     what an engaged element applies to its first member (None when statically
-    indeterminate), ``slip_speed`` (rad/s) is ``w_a - w_b``, ``drag_loss`` (W) its drag.
+    indeterminate), ``slip_speed`` (rad/s) is ``w_a - w_b`` (None when a member is idle:
+    it turns at no speed the train sets), ``drag_loss`` (W) its drag.
     Freewheels holding together in parallel: ``parallel`` names them all (empty
     otherwise), ``torque`` is None (each one's share is indeterminate) and
     ``parallel_torque`` is their total on this element's first member.
@@ -64,7 +66,7 @@ class ShiftState:
     kind: str
     state: str
     torque: float | None
-    slip_speed: float
+    slip_speed: float | None
     drag_loss: float
     parallel: tuple[str, ...] = ()
     parallel_torque: float | None = None
@@ -97,9 +99,29 @@ class ModeResult:
     def element(self, name: str) -> ShiftState:
         return {e.name: e for e in self.elements}[name]
 
+    @property
+    def inactive(self) -> tuple[str, ...]:
+        """The ports the mode leaves inactive, by name (or ``component ID``)."""
+        spec = self.model.mode_specs.get(self.mode) if self.mode is not None else None
+        ports = self.model.ports
+        return tuple(ports[i].name or f"component {self.model.raw_id(ports[i].component)}"
+                     for i in (spec.inactive if spec is not None else ()))
+
+    @property
+    def idle(self) -> tuple[str, ...]:
+        """The components the mode leaves idle (their ids as text), in file order."""
+        if self.result is None:
+            return ()
+        model = self.result.model
+        return tuple(str(model.raw_id(c)) for c in model.components if c in model.idle)
+
     def to_dict(self) -> dict[str, Any]:
         data = self.result.to_dict() if self.result is not None else {"name": self.model.name}
+        inactive = self.result.model.inactive if self.result is not None else frozenset()
+        for port, flow in zip(data.get("ports", ()), self.model.ports):
+            port["active"] = flow.index not in inactive
         data.update({"mode": self.mode, "engaged": list(self.engaged),
+                     "inactive": list(self.inactive), "idle": list(self.idle),
                      "shift_elements": [e.to_dict() for e in self.elements],
                      "freewheels": dict(self.freewheels), "verdict": self.verdict})
         data["warnings"] = list(data.get("warnings", [])) + [str(w) for w in self.warnings]
@@ -119,8 +141,15 @@ class ModeResult:
 
 
 def designed_dof(model: Model) -> int:
-    """The degrees of freedom the train is designed for: one per port giving a speed."""
-    return max(1, sum(p.speed is not None for p in model.ports))
+    """The degrees of freedom the train is designed for: one per active port giving a
+    speed (ports on one rigid body count once).
+
+    >>> from powergraph.model import load_model
+    >>> designed_dof(load_model("models/simpson_3speed.yaml"))
+    1
+    """
+    return max(1, len({model.body_of[p.component] for p in model.ports
+                       if p.speed is not None and p.index not in model.inactive}))
 
 
 def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
@@ -153,8 +182,9 @@ def solve_mode(model: Model, mode: str | None, solve: Any = None) -> ModeResult:
         e.name for e in model.shift_elements if e.engaged and e.kind != "freewheel")
     fixed = None if mode is not None else engaged
     path = mode_path(mode) if mode is not None else "links"
-    need = designed_dof(model)
+    model = at_mode_point(model, mode)
     base = resolve(model, mode, None, fixed)
+    need = designed_dof(base)
     groups = freewheel_groups(base)
     if not groups:
         _check_dof(degrees_of_freedom(base), need, engaged, path,
@@ -267,7 +297,9 @@ def _states(model: Model, derived: Model, result, choice: Mapping[str, bool]) ->
         link = derived.links[element.index]
         slip = relative_speed(speeds.speed(element.between[0]),
                               speeds.speed(element.between[1]))
-        slip = 0.0 if abs(slip) <= ZERO * scale else slip
+        slip = 0.0 if abs(slip) <= ZERO * scale else float(slip)
+        if derived.idle & set(element.between) and link.type != "fixed":
+            slip = None      # an idle member turns at no speed the train sets
         if link.type == "fixed":
             state = "holding" if element.kind == "freewheel" else "engaged"
             torque = joint_torque(result, element.index, torques)
@@ -279,7 +311,7 @@ def _states(model: Model, derived: Model, result, choice: Mapping[str, bool]) ->
             torque = None
         loss = drag[element.index].loss if element.index in drag else 0.0
         states[element.name] = ShiftState(element.name, element.kind, state, torque,
-                                          float(slip), float(loss))
+                                          slip, float(loss))
     return states
 
 

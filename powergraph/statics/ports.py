@@ -50,6 +50,8 @@ class PortFlow:
     torque: float
     power: float
     direction: str
+    #: True when the port's component is idle in its mode (docs/modes.md): no speed.
+    idle: bool = False
 
     @property
     def path(self) -> str:
@@ -69,8 +71,8 @@ class PortFlow:
 
     def to_dict(self, raw=str) -> dict[str, Any]:
         return {"component": raw(self.component), "name": self.name, "role": self.role,
-                "speed": self.speed, "torque": self.torque, "power": self.power,
-                "direction": self.direction}
+                "speed": None if self.idle else self.speed, "torque": self.torque,
+                "power": self.power, "direction": self.direction}
 
 
 def port_flows(result: "PowerFlowResult") -> tuple[PortFlow, ...]:
@@ -80,14 +82,15 @@ def port_flows(result: "PowerFlowResult") -> tuple[PortFlow, ...]:
     for port in model.ports:
         body = model.body_of[port.component]
         speed = float(kin.body_speeds[body]) + 0.0
-        torque = float(result.external_torques.get(body, 0.0)) + 0.0
+        torque = float(result.port_torque(port.index)) + 0.0
         raw.append((port, speed, torque, torque * speed))
     quiet = _no_power(result, [p for _, _, _, p in raw])
     return tuple(PortFlow(index=port.index, component=port.component, name=port.name,
                           role=port.role, speed=speed, torque=torque,
                           power=0.0 if quiet else power + 0.0,
                           direction="none" if quiet or power == 0 else
-                          ("in" if power > 0 else "out"))
+                          ("in" if power > 0 else "out"),
+                          idle=port.component in model.idle)
                  for port, speed, torque, power in raw)
 
 

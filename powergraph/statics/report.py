@@ -43,7 +43,7 @@ def result_to_dict(result: PowerFlowResult) -> dict[str, Any]:
         "input_power": result.input_power,
         "output_power": result.output_power,
         "total_loss": result.total_loss,
-        "speeds": result.speeds,
+        "speeds": {c: None if c in model.idle else w for c, w in result.speeds.items()},
         "torques": result.torques,
         "meshes": meshes,
         "flows": [f.to_dict() for f in result.flows()],
@@ -296,9 +296,11 @@ def _ports_table(result: PowerFlowResult) -> list[str]:
     power = column([p.power for p in ports], scale)
     rows = [["port", "name", "component", "role", "rpm", "torque N·m", f"power {unit}",
              "direction"]]
+    model = result.model
     for k, p in enumerate(ports):
-        rows.append([p.path, p.name or "", result.model.components[p.component].label,
-                     p.role, rpm[k], torque[k], power[k],
+        rows.append([p.path, p.name or "", model.components[p.component].label,
+                     p.role, "idle" if p.component in model.idle else rpm[k], torque[k],
+                     power[k], "inactive" if p.index in model.inactive else
                      {"in": "enters", "out": "leaves", "none": "none"}[p.direction]])
     return table(rows, {4, 5, 6})
 
@@ -311,8 +313,10 @@ def _speeds_table(result: PowerFlowResult) -> list[str]:
     torques = result.torques
     torque = column([torques.get(c, 0.0) for c in ids])
     rows = [["component", "rad/s", "rpm", "external torque N·m"]]
+    idle = result.model.idle
     for k, c in enumerate(ids):
-        rows.append([result.model.components[c].label, rad[k], rpm[k],
+        rows.append([result.model.components[c].label,
+                     *(("idle", "idle") if c in idle else (rad[k], rpm[k])),
                      torque[k] if c in torques else ""])
     return table(rows, {1, 2, 3})
 

@@ -123,6 +123,9 @@ class PowerFlowResult:
     #: The heat balance's state (ThermalState, powergraph.statics.thermal) of a model
     #: with ``thermal:``: the oil temperature the result was solved at.
     thermal: Any = None
+    #: The external torque of each port, by its place in ``model.ports`` (N·m; several
+    #: ports may share a body, docs/modes.md); empty: each port's body's torque.
+    port_torques: tuple = ()
 
     @property
     def name(self) -> str:
@@ -172,9 +175,12 @@ class PowerFlowResult:
     def self_locking(self) -> bool:
         """True when the declared input cannot drive the declared output in the asked
         direction: the train locks, or power passes and its formal efficiency is <= 0
-        (the output must be driven too). False when no power passes at all."""
+        (the output must be driven too). False when no power passes at all, and for a
+        mode whose declared inputs are all inactive (docs/modes.md: its machines drive)."""
         if self.lock is not None:
             return True
+        if not self.model.inputs:
+            return False
         return self.efficiency_note is None and not self.formal_efficiency > 0.0
 
     @cached_property
@@ -209,10 +215,17 @@ class PowerFlowResult:
     @property
     def torques(self) -> dict[str, float]:
         """External torque on every port's component and on the frame (N·m)."""
-        out = {p.component: self.external_torques.get(self.model.body_of[p.component], 0.0)
-               for p in self.model.ports}
+        out = {p.component: self.port_torque(p.index) for p in self.model.ports}
         out[self.model.frame] = self.external_torques[self.model.frame_body]
         return out
+
+    def port_torque(self, index: int) -> float:
+        """The external torque of ``model.ports[index]`` (N·m): its own, when several
+        ports share its body."""
+        if self.port_torques:
+            return self.port_torques[index]
+        port = self.model.ports[index]
+        return self.external_torques.get(self.model.body_of[port.component], 0.0)
 
     @property
     def meshes(self) -> tuple[ElementFlow, ...]:
@@ -233,7 +246,9 @@ class PowerFlowResult:
         w = self.kinematics.body_speeds[body]
         if frame is not None:
             w -= self.kinematics.speed(frame)
-        return self.external_torques.get(body, 0.0) * w
+        ports = [p.index for p in self.model.ports if p.component == str(component)]
+        torque = self.port_torque(ports[0]) if ports else self.external_torques.get(body, 0.0)
+        return torque * w
 
     # --- flow-graph views (computed by powergraph.statics.flow) ---------------------------
     def flows(self, frame: str | None = None):

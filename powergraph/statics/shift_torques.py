@@ -43,8 +43,7 @@ def component_torques(result) -> dict[str, float]:
         torques[bearing.between[0]] -= bearing.torque * sign
         torques[bearing.between[1]] += bearing.torque * sign
     for port in model.ports:
-        torques[port.component] += result.external_torques.get(model.body_of[port.component],
-                                                               0.0)
+        torques[port.component] += result.port_torque(port.index)
     torques[model.frame] += result.external_torques.get(model.frame_body, 0.0)
     return dict(torques)
 

@@ -23,7 +23,8 @@ from powergraph.statics.directions import (
     relative_speeds,
     settle,
 )
-from powergraph.statics.equilibrium import Equilibrium, Loads, loads_of, solve_equilibrium
+from powergraph.statics.equilibrium import (Equilibrium, Loads, loads_of, port_torques,
+                                            solve_equilibrium)
 from powergraph.statics.result import DirectionSearch, ElementFlow, Lock, PowerFlowResult
 
 
@@ -163,7 +164,7 @@ def _assemble(model: Model, kin: Kinematics, elements: tuple[Element, ...], load
         scales = force_scales(elements, eq.forces, factors, eq.external, model.frame_body)
     pattern = pattern_of(eq.forces, rel, scales)
     flows = _element_flows(elements, eq.forces, factors, pattern, kin)
-    return _result(model, kin, flows, eq, passes, search)
+    return _result(model, kin, flows, eq, loads, passes, search)
 
 
 def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads,
@@ -178,7 +179,7 @@ def _at_rest(model: Model, kin: Kinematics, elements: tuple[Element, ...], loads
     flows = tuple(dataclasses.replace(flow, carrier_frame_power=0.0, loss=0.0)
                   for flow in _element_flows(elements, eq.forces, factors,
                                              [0] * len(elements), rest))
-    result = _result(model, rest, flows, eq, passes, search)
+    result = _result(model, rest, flows, eq, loads, passes, search)
     return dataclasses.replace(result, lock=lock)
 
 
@@ -210,10 +211,12 @@ def _element_flows(elements: tuple[Element, ...], forces: np.ndarray, factors: n
 
 
 def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: Equilibrium,
-            passes: int, search: DirectionSearch | None = None) -> PowerFlowResult:
+            loads: Loads, passes: int, search: DirectionSearch | None = None
+            ) -> PowerFlowResult:
+    torques = port_torques(model, loads, eq.external)
+
     def fed(port) -> float:
-        body = model.body_of[port.component]
-        return eq.external.get(body, 0.0) * kin.body_speeds[body]
+        return torques[port.index] * kin.body_speeds[model.body_of[port.component]]
 
     input_power = sum(fed(p) for p in model.inputs)
     output_power = -sum(fed(p) for p in model.outputs)
@@ -221,4 +224,5 @@ def _result(model: Model, kin: Kinematics, flows: tuple[ElementFlow, ...], eq: E
         model=model, kinematics=kin, elements=flows,
         external_torques=MappingProxyType(dict(eq.external)), input_power=float(input_power),
         output_power=float(output_power) + 0.0, total_loss=float(sum(f.loss for f in flows)),
-        passes=passes, load_sharing_assumed=eq.indeterminate, search=search)
+        passes=passes, load_sharing_assumed=eq.indeterminate, search=search,
+        port_torques=torques)

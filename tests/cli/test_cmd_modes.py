@@ -97,3 +97,39 @@ def test_sweep_map_and_tolerance_take_a_mode(capsys) -> None:
     assert "[1]" in capsys.readouterr().out
     assert main(["sweep", model, "--set", "links.0.efficiency=0.98"]) == 2
     assert "--mode" in capsys.readouterr().err
+
+
+VOLT = MODELS / "volt_gen1.yaml"
+
+
+@pytest.mark.parametrize("change, command, message", [
+    (("inactive: [engine, MG-A]", "inactive: [engin, MG-A]"), "check",
+     "modes.one-motor EV.inactive[0]: unknown port 'engin'"),
+    (("inactive: [engine]  ", "off: [engine]  "), "modes",
+     "modes.two-motor EV.False: unknown field: a key read as the boolean false (YAML 1.1 "
+     "reads off, on, yes, no, true and false unquoted as booleans; ports that carry "
+     "nothing in a mode are listed under inactive)"),
+    (("ports: {wheels: {power: 20 kW}}", "ports: {engine: {power: 20 kW}}"), "modes",
+     "modes.one-motor EV.ports.engine: ports[0] (engine) is inactive in this mode"),
+    (("engage: [C1, C3]  ", "engage: [C1, C3]\n    ports: {MG-A: {speed: 1900 rpm}}\n  "),
+     "solve", "ports[0] (engine) gives 209.44 rad/s and ports[1] (MG-A) 198.968 rad/s, "
+              "but they are on one rigid body 'A/E'"),
+    (("engage: [C1, C3]  ", "engage: [C3]  "), "solve",
+     "modes.series: engages C3: leaves 3 DOF, the train needs 1 more engaged element"),
+])
+def test_hybrid_mode_mistakes_exit_2_with_one_line(change, command, message, tmp_path,
+                                                   capsys) -> None:
+    text = VOLT.read_text()
+    assert change[0] in text
+    path = tmp_path / "volt.yaml"
+    path.write_text(text.replace(change[0], change[1], 1))
+    args = [command, str(path)] + (["--mode", "series"] if command == "solve" else [])
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err and err.count("\n") == 1
+
+
+def test_check_names_each_mode_s_dof(capsys) -> None:
+    assert main(["check", str(VOLT)]) == 0
+    out = capsys.readouterr().out
+    assert "DOF power split 2, series 2, one-motor EV 1, two-motor EV 2" in out

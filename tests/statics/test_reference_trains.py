@@ -84,6 +84,7 @@ HAND_TESTED = {
                              "test_the_oil_bath_reducer_is_its_laws_at_its_oil_temperature",
     "ths2_power_split.yaml": "tests/statics/test_machines.py::"
                              "test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation",
+    "volt_gen1.yaml": "tests/statics/test_hybrid_modes.py (every mode, by hand)",
 }
 
 

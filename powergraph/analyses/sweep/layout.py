@@ -74,6 +74,7 @@ def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
     once by the validated single solver: wrong DOF, speeds that do not fix the motion or
     loads that are not determined raise the single solver's own ModelError.
     """
+    refuse_shared_ports(model, "the compiled sweep")
     probe = _probe(model, params)
     elements = elements_of(probe)
     loads = loads_of(probe, solve_speeds(probe))
@@ -94,6 +95,26 @@ def layout_of(model: Model, params: tuple[Parameter, ...]) -> Layout:
         unknown=tuple(column[b] for b in loads.unknown), inputs=inputs, outputs=outputs,
         ratio_bodies=(inputs[0], outputs[0]) if len(inputs) == len(outputs) == 1 else None,
         determinate=not eq.indeterminate)
+
+
+def refuse_shared_ports(model: Model, who: str) -> None:
+    """A batched evaluator (the compiled sweep, the efficiency grid) works on one port per
+    rigid body and on every port: a model with several ports on one body, or with ports
+    its mode leaves inactive (docs/modes.md), is solved point by point instead
+    (:class:`~powergraph.errors.UsageError` saying so)."""
+    from powergraph.errors import UsageError
+    from powergraph.model.graph import shared_port_bodies
+
+    shared = shared_port_bodies(model)
+    if shared:
+        body, ports = next(iter(shared.items()))
+        raise UsageError(f"{who} takes one port per rigid body; ports "
+                         f"{', '.join(model.port_label(i) for i in ports)} share body "
+                         f"{body!r}: solve the points one by one")
+    if model.inactive:
+        raise UsageError(f"{who} does not take ports a mode leaves inactive ("
+                         f"{', '.join(model.port_label(i) for i in sorted(model.inactive))})"
+                         ": solve the points one by one")
 
 
 def _probe(model: Model, params: tuple[Parameter, ...]) -> Model:
