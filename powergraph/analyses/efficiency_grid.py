@@ -23,7 +23,8 @@ reported, not dropped.
 Examples
 --------
 >>> import powergraph as pg
->>> m = pg.load_model("models/rv40e.yaml")
+>>> from powergraph.model.lubricant import fixed_temperature
+>>> m = fixed_temperature(pg.load_model("models/rv40e.yaml"), 273.15 + 60)  # oil at 60 °C
 >>> g = solve_grid(m, np.array([1815.0, 1815.0]), np.array([100.0, 412.0]))
 >>> g.efficiency.round(4).tolist(), g.single_solves, g.unconverged.tolist()
 ([0.8264, 0.8702], 0, [False, False])
