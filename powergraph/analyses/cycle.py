@@ -18,7 +18,7 @@ preallocated columns (``single solves``). A row the batched evaluators do not so
 solved alone, for its reason.
 
 The result holds columns (one numpy array per quantity over the rows: tens of bytes per
-row, issue 34), not a record per row; ``result.rows[i]`` builds row ``i`` as a
+row), not a record per row; ``result.rows[i]`` builds row ``i`` as a
 :class:`CycleRow` when asked for. The totals are sums over the arrays, in row order.
 
 A row that cannot be solved (its loads or speeds do not determine the train...) is an

@@ -1,5 +1,5 @@
 """The rows of a duty cycle held in columns (:mod:`powergraph.analyses.cycle`): one numpy
-array per quantity over the rows, tens of bytes per row (issue 34), filled at once from the
+array per quantity over the rows, tens of bytes per row, filled at once from the
 compiled sweep's arrays or row by row by the single solves; and :class:`CycleRow`, one row
 as a record, built on demand from the columns.
 

@@ -223,7 +223,7 @@ class _Table:
                       duration_column=time.name if time else None)
 
 
-#: What an empty cell of a ``BUS.battery`` column is told (issue 37: in a cycle of one
+#: What an empty cell of a ``BUS.battery`` column is told (in a cycle of one
 #: mode every row gives the battery's power; "not given in this row" is not read yet).
 _EMPTY_BATTERY = (": a BUS.battery column gives the bus's battery power in every row (a "
                   "number, in the header's unit)")
