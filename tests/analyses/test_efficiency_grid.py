@@ -17,6 +17,14 @@ from powergraph.testing import assert_conservation
 
 RV = "models/rv40e.yaml"
 
+
+def friction_rv():
+    """The friction RV-40E with its oil at 60 °C (its heat balance set aside: with it each
+    point settles its own temperature and is solved alone, the next test but one)."""
+    from powergraph.model.lubricant import fixed_temperature
+
+    return fixed_temperature(pg.load_model(RV), 273.15 + 60)
+
 ISO_PAIR = {"name": "iso pair", "components": {0: {"role": "frame"}, 1: {"teeth": 20},
                                                2: {"teeth": 40}},
             "links": [{"type": "mesh", "between": [1, 2],
@@ -38,7 +46,7 @@ def test_the_friction_rv_grid_equals_its_single_solves() -> None:
     # ISO/TR 14179-2 on the first stage, pins and crank bearings on the cycloid mesh,
     # crank-support friction and the drags: every point is its own fixed point. Both
     # senses of rotation (two direction patterns, each from its own reference solve).
-    model = pg.load_model(RV)
+    model = friction_rv()
     speeds = np.array([-1815.0, 100.0, 700.0, 1815.0, 3000.0])
     torques = np.array([20.0, 150.0, 412.0, 800.0])
     rpm, torque = (a.ravel() for a in np.meshgrid(speeds, torques, indexing="ij"))
@@ -51,7 +59,7 @@ def test_the_friction_rv_grid_equals_its_single_solves() -> None:
 
 
 def test_the_map_of_the_friction_rv_is_the_grid_of_single_solves() -> None:
-    model = pg.load_model(RV)
+    model = friction_rv()
     emap = efficiency_map(model, [50.0, 412.0, 800.0], [300.0, 1815.0])
     assert emap.load_dependent and emap.unconverged == () and emap.single_solves == 0
     for i, rpm in enumerate(emap.speeds_rpm):
@@ -62,6 +70,19 @@ def test_the_map_of_the_friction_rv_is_the_grid_of_single_solves() -> None:
     # torque over this range (and stays a plausible RV efficiency at the rated point).
     assert np.all(np.diff(emap.efficiency, axis=1) > 0)
     assert 0.80 < emap.efficiency[1, 1] < 0.95
+
+
+def test_with_its_heat_balance_each_point_is_its_single_solve() -> None:
+    """The RV-40E as written (a heat balance): every point of the grid is solved alone and
+    settles its own oil temperature, as `solve` of that point does."""
+    model = pg.load_model(RV)
+    rpm, torque = np.array([300.0, 1815.0]), np.array([412.0, 100.0])
+    grid = solve_grid(model, rpm, torque)
+    assert grid.single_solves == 2
+    for p in range(2):
+        single = _single(model, rpm[p], torque[p])
+        assert single.thermal.verdict == "ok"
+        assert grid.efficiency[p] == pytest.approx(single.efficiency, rel=1e-12)
 
 
 def test_points_whose_pattern_disagrees_are_solved_one_by_one(monkeypatch) -> None:
