@@ -9,7 +9,9 @@ line across the lever. A simple set (sun reference) has the sun at 1 and the rin
 ``-z_s/z_r``: sun-carrier : carrier-ring = z_r : z_s.
 
 Coaxial members of a carrier are the gears that take part in exactly one of its meshes
-(suns and rings); its planets mesh twice or more.
+(suns and rings); its planets mesh twice or more (the steps of a stepped planet, fixed to
+each other, counted together: a Wolfrom set's lever has its sun, both rings and the
+carrier).
 
 Examples
 --------
@@ -52,12 +54,38 @@ class Lever:
 
 
 @record
+class LeverPort:
+    """A port of the train: its name (its role when it has none), its role (``input``,
+    ``output``, ``machine``), its component and body, and its speed in the mode drawn
+    (rad/s; None without speeds). The lever nodes of its body are marked with it."""
+
+    name: str
+    role: str
+    component: str
+    body: str
+    speed: float | None
+
+
+@record
 class LeverDiagram:
-    """Every planetary set of a train as a lever, with the speeds of one mode."""
+    """Every planetary set of a train as a lever, with the speeds of one mode, and the
+    train's ports (which mark the nodes of their bodies)."""
 
     model: Model = field(repr=False, compare=False)
     mode: str | None
     levers: tuple[Lever, ...]
+    ports: tuple[LeverPort, ...] = ()
+
+    def ports_on(self, node: LeverNode) -> tuple[LeverPort, ...]:
+        """The ports on ``node``'s body (an input on a shaft fixed to a carrier marks
+        that carrier)."""
+        return tuple(p for p in self.ports if p.body == node.body)
+
+    @property
+    def ports_off(self) -> tuple[LeverPort, ...]:
+        """The ports on no lever node (wheels behind a final drive)."""
+        bodies = {n.body for lever in self.levers for n in lever.nodes}
+        return tuple(p for p in self.ports if p.body not in bodies)
 
     @property
     def title(self) -> str:
@@ -73,7 +101,9 @@ class LeverDiagram:
                                        "body": n.body, "speed": n.speed,
                                        "grounded": n.grounded,
                                        "elements": list(n.elements)} for n in lev.nodes]}
-                           for lev in self.levers]}
+                           for lev in self.levers],
+                "ports": [{"name": p.name, "role": p.role, "component": p.component,
+                           "body": p.body, "speed": p.speed} for p in self.ports]}
 
     def text_report(self) -> str:
         lines = [f"{self.title} — levers"]
@@ -120,21 +150,43 @@ def lever_diagram(model: Model, speeds: Mapping[str, float] | None = None,
                            elements=acting.get(m, ()))
                  for m, p in positions.items()]
         levers.append(Lever(carrier, tuple(sorted(nodes, key=lambda n: -n.position))))
-    return LeverDiagram(model=model, mode=mode, levers=tuple(levers))
+    ports = tuple(LeverPort(name=str(p.name) if p.name else _role_name(p, model),
+                            role=p.role, component=p.component, body=model.body_of[p.component],
+                            speed=None if speeds is None else speeds.get(p.component))
+                  for p in model.ports)
+    return LeverDiagram(model=model, mode=mode, levers=tuple(levers), ports=ports)
+
+
+def _role_name(port, model: Model) -> str:
+    """An unnamed port is called by its role, with its component's id when the train has
+    several ports of that role (as in the power-flow diagrams)."""
+    several = sum(p.role == port.role for p in model.ports) > 1
+    return f"{port.role} {model.raw_id(port.component)}" if several else port.role
 
 
 def _positions(model: Model, carrier: str, meshes: list) -> dict[str, float]:
-    """Carrier-held speeds of the coaxial members, the first one at 1, carrier at 0."""
+    """Carrier-held speeds of the coaxial members, the first one at 1, carrier at 0.
+
+    Planets are the gears whose body meshes twice or more in the set: the steps of a
+    stepped planet (fixed to each other) count as one planet, and turn together.
+    """
+    body = model.body_of
     uses: dict[str, int] = defaultdict(int)
     neighbours: dict[str, list] = defaultdict(list)
     for link in meshes:
         a, b = link.between
         i = willis_ratio(link, model)           # (w_a - w_c) = i (w_b - w_c)
-        uses[a] += 1
-        uses[b] += 1
+        uses[body[a]] += 1
+        uses[body[b]] += 1
         neighbours[a].append((b, 1.0 / i))
         neighbours[b].append((a, i))
-    coaxial = [g for link in meshes for g in link.between if uses[g] == 1]
+    steps: dict[str, list[str]] = defaultdict(list)      # body -> its meshing gears
+    for gear in neighbours:
+        steps[body[gear]].append(gear)
+    for gear in neighbours:
+        if uses[body[gear]] > 1:                 # a planet's steps: one speed
+            neighbours[gear] += [(other, 1.0) for other in steps[body[gear]] if other != gear]
+    coaxial = [g for link in meshes for g in link.between if uses[body[g]] == 1]
     coaxial = list(dict.fromkeys(coaxial))
     if not coaxial:
         return {carrier: 0.0}

@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import argparse
 
-from powergraph.cli.common import (check_figure_path, load, new_axes, print_json, save_figure,
-                                   say_wrote)
+from powergraph.cli.common import (check_figure_path, load, new_figure, print_json,
+                                   save_figure, say_wrote)
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("lever", help="lever diagrams of the planetary sets",
                             description="Each planetary set as a vertical lever (nodes "
                                         "spaced by tooth numbers), held members grounded, "
-                                        "the speeds of a mode as arrows (docs/modes.md).")
+                                        "the speeds of a mode as arrows, written in rpm, "
+                                        "the ports marked by their names (docs/modes.md).")
     parser.add_argument("model", help="model file (YAML)")
     parser.add_argument("-o", "--output", metavar="FILE",
                         help="figure file (.png, .svg or .pdf)")
@@ -32,8 +33,7 @@ def run(args: argparse.Namespace) -> int:
     diagram = lever_diagram(result.model, result.speeds, args.mode)
     print_json(diagram.to_dict()) if args.json else print(diagram.text_report())
     if target is not None:
-        ax = new_axes((max(4.0, 2.2 * len(diagram.levers) + 1), 5.0))
-        diagram.plot(ax=ax)
-        save_figure(ax.figure, target, dpi=150, bbox_inches="tight")
+        ax = diagram.plot(figure=new_figure())      # its natural size (docs/modes.md)
+        save_figure(ax.figure, target, dpi=150)
         say_wrote(target, data_on_stdout=args.json)
     return 0

@@ -29,7 +29,8 @@ from typing import Any
 
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, FancyBboxPatch, PathPatch, Polygon, Rectangle
+from matplotlib.patches import (Circle, FancyBboxPatch, Patch, PathPatch, Polygon,
+                                Rectangle)
 from matplotlib.path import Path
 
 from powergraph.plot.fonts import GlyphWarning, drawing_fonts, undrawable
@@ -38,7 +39,9 @@ from powergraph.plot.layout.layout import FlowLayout, LayoutStyle, NodePlace, la
 from powergraph.plot.layout.nodes import NodeMap
 from powergraph.plot.layout.place import LABEL_PAD
 from powergraph.plot.layout.view import FlowView, flow_view, format_power, format_share
-from powergraph.plot.text import PLAIN, plain
+from powergraph.plot.natural import (fit_figure, fitted_legend, fitted_scale, measurer,
+                                     natural_axes)
+from powergraph.plot.text import PLAIN
 
 INK = "#1f3b5c"
 COLOURS = {"power": "#2c6fad", "zero": "#8a8a8a", "loss": "#b5651d", "loop": "#c0392b"}
@@ -46,7 +49,6 @@ FILLS = {"body": "#e8f0fa", "frame": "#e3e3e3", "mesh": "white", "coupling": "#f
          "bearing": "#fdf3e7", "seal": "#fdf3e7", "drag": "#fdf3e7",
          "churning": "#fdf3e7",
          "loss": "#fbe9d6", "motor": "white", "generator": "white", "ground": "white"}
-INCH = 72.0
 
 
 def plot_power_flow(result: Any, frame: str | int | None = None, ax=None, *,
@@ -104,8 +106,9 @@ def _texts(layout: FlowLayout) -> list[str]:
 def _draw(fig, ax, view: FlowView, result: Any, font_size: float, legend: bool,
           subtitle: bool):
     style = LayoutStyle(font_size=font_size)
-    layout = layout_flow(view, _measurer(fig), style)
-    scale = _prepare_axes(fig, ax, layout, legend) if ax is not None else 1.0
+    layout = layout_flow(view, measurer(fig), style)
+    scale = fitted_scale(ax, layout.bounds) if ax is not None else 1.0
+    natural = ax is None
     if ax is None:
         ax = _natural_axes(fig, layout, legend)
     ax.set_axis_off()
@@ -120,54 +123,17 @@ def _draw(fig, ax, view: FlowView, result: Any, font_size: float, legend: bool,
                  color=INK, linespacing=1.5, **PLAIN)
     if legend:
         _legend(ax, view, scale, font_size)
+    if natural:
+        fit_figure(ax)
     return ax
 
 
 # --- figure and axes -------------------------------------------------------------------
-def _measurer(fig):
-    """Text extents in points, measured with the figure's renderer (cached).
-
-    The renderer is the figure's own (whatever backend the user chose); no backend is
-    selected here.
-    """
-    cache: dict[tuple[str, float], tuple[float, float]] = {}
-
-    def size(text: str, font: float) -> tuple[float, float]:
-        if (text, font) not in cache:
-            probe = fig.text(0, 0, text, fontsize=font, **PLAIN)
-            box = probe.get_window_extent()
-            probe.remove()
-            cache[(text, font)] = (box.width * INCH / fig.dpi, box.height * INCH / fig.dpi)
-        return cache[(text, font)]
-    return size
-
-
 def _natural_axes(fig, layout: FlowLayout, legend: bool):
     """A figure in which one data unit is one point."""
-    b = layout.bounds
-    width, height = b.x1 - b.x0, b.y1 - b.y0
-    top = 3.4 * layout.style.font_size
-    bottom = (2.6 * layout.style.font_size) if legend else 6.0
-    side = 12.0
-    fig.set_size_inches((width + 2 * side) / INCH, (height + top + bottom) / INCH)
-    fw, fh = width + 2 * side, height + top + bottom
-    ax = fig.add_axes((side / fw, bottom / fh, width / fw, height / fh))
-    ax.set_xlim(b.x0, b.x1)
-    ax.set_ylim(b.y0, b.y1)
-    ax.set_aspect("equal")
-    return ax
-
-
-def _prepare_axes(fig, ax, layout: FlowLayout, legend: bool) -> float:
-    """Fit the layout into a given axes; returns the scale applied to fonts and lines."""
-    b = layout.bounds
-    box = ax.get_window_extent()
-    w_pt, h_pt = box.width * INCH / fig.dpi, box.height * INCH / fig.dpi
-    scale = min(w_pt / (b.x1 - b.x0), h_pt / (b.y1 - b.y0))
-    ax.set_xlim(b.x0, b.x1)
-    ax.set_ylim(b.y0, b.y1)
-    ax.set_aspect("equal", adjustable="box")
-    return scale
+    font = layout.style.font_size
+    return natural_axes(fig, layout.bounds, top=3.4 * font,
+                        bottom=(2.6 * font) if legend else 6.0)
 
 
 # --- nodes -----------------------------------------------------------------------------
@@ -295,11 +261,10 @@ def _legend(ax, view, s: float, font_size: float) -> None:
                Line2D([], [], color=COLOURS["loss"], lw=2.5, label="loss"),
                Line2D([], [], color=COLOURS["zero"], lw=1, ls="--", label="0 W link")]
     if view.held is not None:
-        handles.insert(2, Line2D([], [], marker="s", ls="none", mfc=FILLS["frame"], mec=INK,
-                                 ms=8, label=(f"held frame {view.held}" if view.frame_body
-                                              else f"frame {view.held}")))
+        handles.insert(2, Patch(fc=FILLS["frame"], ec=INK, hatch="////",
+                                label=(f"held frame: {view.held}" if view.frame_body
+                                       else f"frame: {view.held}")))
     if view.loop_edges:
         handles.append(Line2D([], [], color=COLOURS["loop"], lw=2.5, label="circulating"))
-    plain(ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                    ncol=len(handles), frameon=False, fontsize=font_size * 0.85 * s,
-                    handlelength=1.6, columnspacing=1.2, borderaxespad=0.3))
+    fitted_legend(ax, handles, font_size * 0.85 * s, handlelength=1.6, columnspacing=1.2,
+                  borderaxespad=0.3)

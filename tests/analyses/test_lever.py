@@ -40,3 +40,16 @@ def test_ravigneaux_lever_has_four_nodes_and_speeds_on_a_line() -> None:
         assert node.speed == pytest.approx(w_c + node.position * (w_ref - w_c), rel=1e-9,
                                            abs=1e-9)
     assert [n.grounded for n in lever.nodes] == [False, False, False, True]   # B1 holds s2
+
+
+def test_stepped_planets_are_one_planet_not_a_node() -> None:
+    """A stepped planet's steps (fixed to each other) turn together and are no lever node:
+    the stepped 2K-H has sun, carrier and ring, the ring at -(z_s/z_p1)(z_p2/z_r) = -1/8
+    (k = 8); the Wolfrom set has its sun, carrier and both rings, the output ring at
+    -(12/30)(27/69)."""
+    stepped = lever_diagram(load_model(MODELS / "planetary_stepped.yaml")).levers[0]
+    assert [(n.component, n.position) for n in stepped.nodes] == [
+        ("s", 1.0), ("c", 0.0), ("r", pytest.approx(-1 / 8, rel=1e-12))]
+    wolfrom = lever_diagram(load_model(MODELS / "wolfrom_3k.yaml")).levers[0]
+    assert {n.component: n.position for n in wolfrom.nodes} == pytest.approx(
+        {"s": 1.0, "c": 0.0, "r1": -12 / 72, "r2": -(12 / 30) * (27 / 69)}, rel=1e-12)

@@ -45,7 +45,28 @@ def test_drawing_keeps_mplbackend(backend: str) -> None:
 
 
 def test_importing_the_plot_package_imports_no_matplotlib() -> None:
-    out = run_python("import sys, powergraph.plot, powergraph.plot.layout.layout\n"
+    out = run_python("import sys, powergraph.plot, powergraph.plot.layout.layout, "
+                     "powergraph.plot.layout.fold, powergraph.plot.lever_layout\n"
                      "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))",
                      None)
     assert out == "[]"
+
+
+@pytest.mark.slow
+def test_solve_and_the_layouts_import_no_matplotlib() -> None:
+    """``powergraph solve`` never loads matplotlib, nor do the figures' layouts (the
+    folded flow diagram, the levers): the numbers never depend on a drawing."""
+    code = ("import io, sys, contextlib\n"
+            "from powergraph.cli.main import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    main(['solve', 'models/ths2_power_split.yaml'])\n"
+            "import powergraph as pg\n"
+            "from powergraph.analyses.lever import lever_diagram\n"
+            "from powergraph.plot.layout.layout import layout_flow\n"
+            "from powergraph.plot.layout.view import flow_view\n"
+            "from powergraph.plot.lever_layout import layout_levers\n"
+            "result = pg.solve(pg.load_model('models/ths2_power_split.yaml'))\n"
+            "layout_flow(flow_view(result)), layout_levers(lever_diagram(result.model, "
+            "result.speeds))\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
+    assert run_python(code, None) == "[]"

@@ -155,17 +155,17 @@ def test_place_label_refuses_when_everything_collides() -> None:
 # --- the layout follows the power ------------------------------------------------------
 def test_rv40e_actual_layers_in_flow_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e)))
-    x = {n.name: p.x for n, p in layout.nodes.items()}
+    at = {n.name: reading(p) for n, p in layout.nodes.items()}   # folded: band, then x
     chain = ["motor", "1", "mesh 1-2", "2/3", "mesh 4-5", "4", "coupling 4-6", "6/7",
              "generator"]
-    assert [x[n] for n in chain] == sorted(x[n] for n in chain)
-    assert len({x[n] for n in chain}) == len(chain)
+    assert [at[n] for n in chain] == sorted(at[n] for n in chain)
+    assert len({at[n] for n in chain}) == len(chain)
 
 
 def test_frame_7_keeps_idle_members_in_their_actual_order(rv40e, solve_ok) -> None:
     layout = layout_flow(flow_view(solve_ok(rv40e), "7"))
-    x = {n.name: p.x for n, p in layout.nodes.items()}
-    assert x["4"] < x["coupling 4-6"] < x["6/7"]      # all three carry 0 W in this view
+    at = {n.name: reading(p) for n, p in layout.nodes.items()}
+    assert at["4"] < at["coupling 4-6"] < at["6/7"]      # all three carry 0 W in this view
 
 
 @pytest.mark.parametrize("path", MODEL_FILES, ids=lambda p: p.stem)
@@ -174,6 +174,12 @@ def test_every_model_every_carrier(path, solve_ok) -> None:
     for view in views:
         layout = layout_flow(view)
         check_layout(view, layout)
+        assert 1.2 <= aspect(layout) <= 2.4, view.title      # folded near 16 : 9
+
+
+def aspect(layout) -> float:
+    b = layout.bounds
+    return (b.x1 - b.x0) / (b.y1 - b.y0)
 
 
 @pytest.mark.parametrize("frame", [None, "c"])
@@ -183,7 +189,9 @@ def test_closed_differential_loop_drawn_backwards_at_its_weakest(solve_ok, frame
     check_layout(view, layout)
     if frame is None:
         loop = [e for e in layout.edges if e.loop]
-        backwards = [e for e in loop if e.vertices[0][0] > e.vertices[-1][0]]
+        nodes = layout.nodes
+        backwards = [e for e in loop if reading(nodes[e.flow.source_node])
+                     > reading(nodes[e.flow.target_node])]
         assert len(backwards) == 1
         assert backwards[0].flow.power == min(e.flow.power for e in loop)
         assert backwards[0].key == (Node("mesh", "mesh p-r"), Node("body", "c/a"))
@@ -199,19 +207,27 @@ def check_layout(view, layout) -> None:
         target = nodes[_stub(edge) if edge.loss else edge.flow.target_node]
         assert _touches(source.box, edge.vertices[0]), edge.key
         assert _touches(target.box, edge.vertices[-1]), edge.key
-    # motor leftmost, generator rightmost
+    # motor first (leftmost, top band), generator last (rightmost of the bottom band)
     xs = [p.x for p in nodes.values()]
+    last = max(p.band for p in nodes.values())
     for name, node in nodes.items():
         if node.kind == "motor":
-            assert node.x == min(xs), name
+            assert node.x == min(xs) and node.band == 0, name
         if node.kind == "generator":
-            assert node.x == max(xs), name
-    # arrows that carry power point right, except on a loop or at a port fed backwards
+            assert node.band == last, name
+            assert node.x == max(p.x for p in nodes.values() if p.band == last), name
+    # arrows that carry power point on in reading order (right, or to a later band),
+    # except on a loop or at a port fed backwards
     for edge in layout.edges:
         kinds = {view.kinds[edge.flow.source_node], view.kinds.get(edge.flow.target_node)}
         if edge.zero or edge.loss or edge.loop or kinds & {"motor", "generator"}:
             continue
-        assert nodes[edge.flow.source_node].x < nodes[edge.flow.target_node].x, edge.key
+        assert reading(nodes[edge.flow.source_node]) < reading(nodes[edge.flow.target_node]), \
+            edge.key
+    # bands stacked top to bottom without overlapping
+    for upper, lower in zip(range(last), range(1, last + 1)):
+        assert min(b.y0 for p in nodes.values() if p.band == upper for b in p.boxes) > \
+            max(b.y1 for p in nodes.values() if p.band == lower for b in p.boxes)
     # widths proportional to power above the floor; 0 W links thin
     ratios = [e.width / e.flow.power for e in layout.edges
               if not e.zero and e.width > style.min_width]
@@ -232,6 +248,11 @@ def check_layout(view, layout) -> None:
     # nodes do not overlap each other
     for a, b in itertools.combinations(boxes, 2):
         assert not a.overlaps(b)
+
+
+def reading(node) -> tuple[int, float]:
+    """Where a node comes in reading order: its band (top first), then left to right."""
+    return (node.band, node.x)
 
 
 def _stub(edge) -> Node:

@@ -144,11 +144,18 @@ def _check_no_overlap(ax) -> None:
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     texts = [t for t in ax.texts if t.get_text()] + [ax.title]
+    if ax.get_legend() is not None:
+        texts += list(ax.get_legend().get_texts())
     boxes = [t.get_window_extent(renderer) for t in texts]
     clashes = [(texts[i].get_text(), texts[j].get_text())
                for i, j in itertools.combinations(range(len(texts)), 2)
                if boxes[i].overlaps(boxes[j])]
     assert not clashes
+    if ax.get_subplotspec() is None:     # a figure of its own: every text inside it
+        page = fig.bbox
+        for text, box in zip(texts, boxes):
+            assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0 \
+                and box.y1 <= page.y1, text.get_text()
     symbols = [p.get_window_extent(renderer) for p, _ in ax.powergraph_nodes.values()]
     for _, label in ax.powergraph_artists.values():
         box = label.get_window_extent(renderer)
@@ -165,7 +172,21 @@ def test_every_model_in_every_carriers_frame(path, every_frame, solve_ok) -> Non
     for frame in [None, *carriers(model)] if every_frame else [None]:
         ax = plot_power_flow(result, frame)
         check_drawing(result, frame, ax)
+        # a report's figure: long trains folded onto bands near 16 : 9
+        b = ax.powergraph_layout.bounds
+        assert 1.2 <= (b.x1 - b.x0) / (b.y1 - b.y0) <= 2.4, (frame, b)
         plt.close(ax.figure)
+
+
+@pytest.mark.slow
+def test_hybrid_ports_are_drawn_by_their_names(solve_ok) -> None:
+    """THS-II: the engine, the wheels and both machines are called by their port names."""
+    result = solve_ok(pg.load_model(str(ROOT / "models" / "ths2_power_split.yaml")))
+    ax = plot_power_flow(result)
+    drawn = {text.get_text() for _, text in ax.powergraph_nodes.values() if text is not None}
+    assert {"engine", "wheels", "MG1", "MG2"} <= drawn
+    assert "motor" not in drawn and "generator" not in drawn
+    assert max(p.band for p in ax.powergraph_layout.nodes.values()) >= 1   # folded
 
 
 @pytest.mark.parametrize("name", sorted(UNSEEN))

@@ -8,6 +8,7 @@ reused without a drawing backend; :mod:`powergraph.plot.power_flow` draws it.
 - :mod:`powergraph.plot.layout.layout`: :func:`~powergraph.plot.layout.layout.layout_flow`,
   a layered layout that follows the power;
 - :mod:`powergraph.plot.layout.place`: rows, arrow routes and label spots;
+- :mod:`powergraph.plot.layout.fold`: long diagrams folded onto bands near 16 : 9;
 - :mod:`powergraph.plot.layout.parts`: the records both build (``LayoutStyle``,
   ``NodePlace``, ``EdgeRoute``, ``FlowLayout``, ``Skeleton``);
 - :mod:`powergraph.plot.layout.geometry`: boxes, Bézier routes, text-size estimates.

@@ -197,12 +197,13 @@ def segments(vertices: Sequence[tuple[float, float]], codes: Sequence[int]) -> l
 
 
 def label_candidates(pieces: list[np.ndarray], size: tuple[float, float],
-                     gap: float = 3.0) -> list[tuple[float, float]]:
+                     gap: float = 3.0, ordered: bool = False) -> list[tuple[float, float]]:
     """Label centres along a route, best first: on the line near the middle of the
-    middle piece, then further along it, then on other pieces, then beside the line
-    (``gap`` from its centre line to the label's edge)."""
+    middle piece (the first piece if ``ordered``), then further along it, then on other
+    pieces, then beside the line (``gap`` from its centre line to the label's edge)."""
     w, h = size
-    order = sorted(range(len(pieces)), key=lambda k: (abs(k - (len(pieces) - 1) / 2), k))
+    order = list(range(len(pieces))) if ordered else \
+        sorted(range(len(pieces)), key=lambda k: (abs(k - (len(pieces) - 1) / 2), k))
     fractions = (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85)
     on_line, beside = [], []
     for k in order:

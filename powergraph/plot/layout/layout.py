@@ -16,9 +16,13 @@ order, motor on the left and generator on the right (a Sugiyama layout):
    flow runs straight) under minimum-gap constraints, solved exactly per layer by
    isotonic regression (pool-adjacent-violators).
 5. **Losses** are a sink drawn once per element, right under it (the paper's L1, L2).
-6. **Labels** ("2.06 kW / 90.9 %") are placed greedily, strongest flow first, on the
+6. **Bands**: a long row of layers is folded onto bands stacked top to bottom, near
+   16 : 9 (:mod:`powergraph.plot.layout.fold`): each band read left to right, arrows
+   between bands along nested lanes (``LayoutStyle(aspect=None)``: one band).
+7. **Labels** ("2.06 kW / 90.9 %") are placed greedily, strongest flow first, on the
    first spot along the arrow that hits no node and no other label and covers the least
-   of the other arrows; if one cannot be placed the layout is redone with more room.
+   of the other arrows (an arrow between bands: on its lane first); if one cannot be
+   placed the layout is redone with more room.
 
 Everything is deterministic: the same view gives the same positions, run after run.
 Coordinates are points (1/72 in); draw at 1 data unit = 1 pt (or scale the fonts).
@@ -29,7 +33,9 @@ Examples
 >>> from powergraph.plot.layout.view import flow_view
 >>> result = pg.solve(pg.load_model("models/rv40e_wang2021.yaml"))            # doctest: +SKIP
 >>> layout = layout_flow(flow_view(result))                           # doctest: +SKIP
->>> layout.nodes["motor"].x < layout.nodes["2/3"].x < layout.nodes["generator"].x  # doctest: +SKIP
+>>> [layout.nodes[n].band for n in ("motor", "2/3", "generator")]   # doctest: +SKIP
+[0, 0, 1]
+>>> layout.nodes["motor"].x < layout.nodes["2/3"].x                 # doctest: +SKIP
 True
 
 Nodes are flow-graph :class:`~powergraph.statics.flow.Node` s (kind and name); waypoints

@@ -14,7 +14,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import field
-from typing import Mapping
+from typing import Any, Mapping
 
 from powergraph.plot.layout.geometry import Box, Shape, head_polygon, trim_end
 from powergraph.plot.layout.nodes import NodeMap
@@ -41,6 +41,11 @@ class LayoutStyle:
     waypoint_height: float = 6.0
     margin: float = 6.0
     attempts: int = 8
+    #: Width : height aimed at when long diagrams are folded onto bands
+    #: (:mod:`powergraph.plot.layout.fold`), and the range a folding is stretched into;
+    #: None draws every layer in one band.
+    aspect: float | None = 16 / 9
+    aspect_range: tuple[float, float] = (1.5, 2.1)
 
     @property
     def label_size(self) -> float:
@@ -54,7 +59,8 @@ class LayoutStyle:
 @record
 class NodePlace:
     """A drawn node: its symbol centred at ``(x, y)``, its caption underneath if any;
-    ``kind`` is the kind drawn (a held body is drawn as ``frame``)."""
+    ``kind`` is the kind drawn (a held body is drawn as ``frame``); ``band`` is the band
+    its layer was folded onto (0 at the top)."""
 
     node: Node
     kind: str
@@ -62,6 +68,7 @@ class NodePlace:
     y: float
     shape: Shape
     layer: int
+    band: int = 0
 
     @property
     def name(self) -> str:
@@ -130,6 +137,9 @@ class FlowLayout:
     bounds: Box
     style: LayoutStyle
     spread: float = 1.0
+    #: The bands the layers were folded onto and the lanes between them
+    #: (:class:`~powergraph.plot.layout.fold.Folding`).
+    folding: Any = None
 
     @property
     def clean(self) -> bool:

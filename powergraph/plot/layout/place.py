@@ -19,9 +19,10 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.plot.layout.geometry import (
-    CURVE4, MOVETO, Box, Shape, TextSize, bezier_chain, bounds, estimate_text_size, head_box,
+    CURVE4, MOVETO, Box, Shape, TextSize, bounds, estimate_text_size, head_box,
     label_candidates, node_shape, place_label, port, port_offsets, sample, segments,
     straight, stub_candidates)
+from powergraph.plot.layout.fold import fold
 from powergraph.plot.layout.parts import (WAYPOINT, EdgeRoute, FlowLayout, LayoutStyle,
                                             NodePlace, Skeleton)
 from powergraph.plot.layout.nodes import NodeMap
@@ -47,16 +48,20 @@ def place(view: FlowView, skeleton: Skeleton, text_size: TextSize = estimate_tex
                for n in skeleton.layer_of}
     y = rows(skeleton, extents, _weights(view, skeleton), style.row_gap * spread)
     x = _columns(skeleton, shapes, sizes, stub, stub_of, style, spread)
-    nodes = {n: NodePlace(n, view.kinds.get(n, "body"), x[skeleton.layer_of[n]], y[n],
-                          shape, skeleton.layer_of[n]) for n, shape in shapes.items()}
+    folding = fold(skeleton, x, y, extents, _half_widths(skeleton, shapes),
+                   max((h for _, h in sizes.values()), default=0.0),
+                   style.max_width, style)
+    points = {n: folding.point(skeleton.layer_of[n], y[n]) for n in skeleton.layer_of}
+    nodes = {n: NodePlace(n, view.kinds.get(n, "body"), *points[n], shape,
+                          skeleton.layer_of[n], folding.band_of[skeleton.layer_of[n]])
+             for n, shape in shapes.items()}
     for owner, name in stub_of.items():
         o = nodes[owner]
         nodes[name] = NodePlace(name, "loss", o.x,
                                 o.y - o.shape.height / 2 - stub_len - stub.height / 2,
-                                stub, o.layer)
-    points = {n: (x[skeleton.layer_of[n]], y[n]) for n in skeleton.layer_of}
-    paths = _paths(view, skeleton, nodes, points, stub_of, style)
-    return _labelled(view, skeleton, nodes, paths, sizes, style, spread)
+                                stub, o.layer, o.band)
+    paths = _paths(view, skeleton, nodes, points, stub_of, style, folding)
+    return _labelled(view, skeleton, nodes, paths, sizes, style, spread, folding)
 
 
 # --- rows: y of every node (step 4 of the layout) ---------------------------------------
@@ -140,11 +145,15 @@ def _weights(view: FlowView, skeleton: Skeleton) -> dict[tuple[Node, Node], floa
     return weights
 
 
+def _half_widths(skeleton, shapes) -> list[float]:
+    return [max((shapes[n].half_width for n in layer if n in shapes), default=2.0)
+            for layer in skeleton.layers]
+
+
 def _columns(skeleton, shapes, sizes, stub, stub_of, style, spread) -> list[float]:
     """x of each layer: room for the widest node and the widest label in each gap."""
     count = len(skeleton.layers)
-    half = [max((shapes[n].half_width for n in layer if n in shapes), default=2.0)
-            for layer in skeleton.layers]
+    half = _half_widths(skeleton, shapes)
     need = [0.0] * count
     for i, chain in skeleton.chains.items():
         for a in chain[:-1]:
@@ -177,7 +186,7 @@ def _ports(skeleton: Skeleton, points: Mapping[Node, tuple[float, float]],
     return offsets
 
 
-def _paths(view, skeleton, nodes, points, stub_of, style) -> dict[int, tuple]:
+def _paths(view, skeleton, nodes, points, stub_of, style, folding) -> dict[int, tuple]:
     """Vertices and codes of every arrow, from its source to its target."""
     offsets = _ports(skeleton, points, nodes, style)
     paths = {}
@@ -190,7 +199,7 @@ def _paths(view, skeleton, nodes, points, stub_of, style) -> dict[int, tuple]:
         route = [port(a.x, a.y, a.shape, +1, offsets[(i, "start")]),
                  *(points[w] for w in chain[1:-1]),
                  port(b.x, b.y, b.shape, -1, offsets[(i, "end")])]
-        vertices, codes = bezier_chain(route)
+        vertices, codes = folding.route(i, [skeleton.layer_of[n] for n in chain], route)
         if i in skeleton.reversed:
             vertices = vertices[::-1]
         paths[i] = (vertices, codes)
@@ -212,13 +221,25 @@ def _side_path(a: NodePlace, b: NodePlace, off_a: float, off_b: float,
     return (vertices[::-1] if backwards else vertices), codes
 
 
+def _lanes_first(pieces: list[np.ndarray], index: int, folding) -> list[np.ndarray]:
+    """The pieces of a folded arrow with its lanes (between bands) first: a label sits
+    best on the long run back."""
+    heights = {round(lane.y, 6) for (i, _), lane in folding.lanes.items() if i == index}
+    if not heights:
+        return pieces
+    on_lane = [p for p in pieces if np.ptp(p[:, 1]) < 1e-6 and np.ptp(p[:, 0]) > 1.0
+               and round(float(p[0, 1]), 6) in heights]
+    on_lane.sort(key=lambda p: -np.ptp(p[:, 0]))
+    return on_lane + [p for p in pieces if not any(p is q for q in on_lane)]
+
+
 def _width(view: FlowView, power: float, style: LayoutStyle, zero: bool) -> float:
     if zero:
         return style.zero_width
     return max(style.min_width, style.max_width * power / (view.largest or 1.0))
 
 
-def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
+def _labelled(view, skeleton, nodes, paths, sizes, style, spread, folding) -> FlowLayout:
     """Place every label (loss stubs first, then strongest first) and assemble."""
     samples = {i: sample(*paths[i]) for i in paths}
     owners = np.concatenate([[i] * len(s) for i, s in samples.items()]) if samples else []
@@ -231,6 +252,7 @@ def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
     order = sorted(paths, key=lambda i: (view.is_zero(flows[i]), i in skeleton.stubs,
                                          -flows[i].power, i))
     spots: dict[int, tuple] = {}
+    lanes = {i for i, _ in folding.lanes}
     for i in order:
         vertices, codes = paths[i]
         if i in skeleton.stubs:
@@ -239,8 +261,9 @@ def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
             candidates = stub_candidates(vertices[0], vertices[-1], sizes[i], clear / 2,
                                          nodes[skeleton.stubs[i]].box)
         else:
-            candidates = label_candidates(segments(vertices, codes), sizes[i],
-                                          gap=2.0 + widths[i] / 2)
+            candidates = label_candidates(_lanes_first(segments(vertices, codes), i,
+                                                       folding), sizes[i],
+                                          gap=2.0 + widths[i] / 2, ordered=i in lanes)
         found = place_label(candidates, sizes[i], obstacles, ink[owners != i])
         placed = found is not None
         if not placed:
@@ -258,4 +281,4 @@ def _labelled(view, skeleton, nodes, paths, sizes, style, spread) -> FlowLayout:
                                head_size=style.head(widths[i])))
     boxes = [b for node in nodes.values() for b in node.boxes] + [e.label_box for e in edges]
     return FlowLayout(view, NodeMap(nodes), tuple(edges), bounds(boxes, ink, style.margin),
-                      style, spread)
+                      style, spread, folding)
