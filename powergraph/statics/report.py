@@ -274,9 +274,8 @@ def _oil_rows(result: PowerFlowResult) -> list[list[str]]:
     rows = []
     oil = result.model.lubricant
     if oil is not None:
-        how = {None: "given", "ok": "from the heat balance"}.get(
-            None if result.thermal is None else result.thermal.verdict,
-            None if result.thermal is None else result.thermal.verdict)
+        verdict = None if result.thermal is None else result.thermal.verdict
+        how = {None: "given", "ok": "from the heat balance"}.get(verdict, verdict)
         rows.append(["oil", f"{oil.temperature - 273.15:.1f} degC ({how}), "
                             f"{oil.viscosity() * 1e6:.4g} cSt, {oil.density:g} kg/m^3"])
     if result.thermal is not None:
