@@ -27,11 +27,17 @@ class PowerGraphError(Exception):
         What is wrong, in the user's terms.
     path : str, optional
         Where in the model file it is wrong (``links[2].carrier``), if anywhere.
+    missing : {"speed", "load"}, optional
+        The model gives too few values of this kind (a speed, or a power or torque) to
+        determine the train: a caller that left some out (a duty cycle's empty cells)
+        can name them.
     """
 
-    def __init__(self, message: str, path: str | None = None) -> None:
+    def __init__(self, message: str, path: str | None = None,
+                 missing: str | None = None) -> None:
         self.message = message
         self.path = path
+        self.missing = missing
         super().__init__(f"{path}: {message}" if path else message)
 
 

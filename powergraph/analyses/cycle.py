@@ -101,7 +101,8 @@ class CycleResult:
     machines : Mapping[str, Mapping[str, ndarray]]
         With machines, each machine's ``speed`` (rad/s), ``torque`` (N·m), ``power``
         (mechanical, into the train) and ``electrical_power`` (drawn from its bus), W;
-        its state is the sign of ``power`` (:meth:`machine_states`).
+        its state is the sign of ``power`` (:meth:`machine_states`); NaN speed in a row
+        whose mode leaves it inactive.
     battery_power : Mapping[str, ndarray]
         With machines, each bus's battery power into the bus, W (given, or what the
         machines draw for a free battery).
@@ -210,8 +211,9 @@ class CycleResult:
 
     def machine_states(self, name: str) -> list[str]:
         """Machine ``name``'s state per row: ``motoring``, ``generating``, ``idle``, or
-        an empty text in a row not solved (the sign of its mechanical power)."""
-        return machine_states(self.machines[name]["power"])
+        ``inactive`` (its row's mode switches it off: no speed), or an empty text in a
+        row not solved (the sign of its mechanical power)."""
+        return machine_states(self.machines[name]["power"], self.machines[name]["speed"])
 
     @property
     def failed(self) -> np.ndarray:

@@ -72,23 +72,27 @@ def port_label(port: Any) -> str:
     return port.name or str(port.component)
 
 
-def machine_state(power: float) -> str:
+def machine_state(power: float, speed: float = 0.0) -> str:
     """``motoring``, ``generating`` or ``idle``, by the sign of the mechanical power
-    (:attr:`powergraph.statics.machines.MachineFlow.state`)."""
-    return "motoring" if power > 0 else ("generating" if power < 0 else "idle")
+    (:attr:`powergraph.statics.machines.MachineFlow.state`); ``inactive`` without a speed
+    (NaN: a machine its row's mode switches off, docs/modes.md)."""
+    return machine_states(np.array([power]), np.array([speed]))[0]
 
 
-def machine_states(power: np.ndarray) -> list[str]:
-    """:func:`machine_state` of each power, an empty text for NaN (a row not solved).
+def machine_states(power: np.ndarray, speed: np.ndarray) -> list[str]:
+    """:func:`machine_state` of each power and speed, an empty text for a NaN power (a
+    row not solved).
 
-    >>> machine_states(np.array([5.0, -1.0, 0.0, np.nan]))
-    ['motoring', 'generating', 'idle', '']
+    >>> machine_states(np.array([5.0, -1.0, 0.0, np.nan, 0.0]),
+    ...                np.array([1.0, 1.0, 0.0, np.nan, np.nan]))
+    ['motoring', 'generating', 'idle', '', 'inactive']
     """
     codes = np.where(power > 0, 1, np.where(power < 0, 2, np.where(power == 0, 3, 0)))
+    codes[(codes == 3) & np.isnan(speed)] = 4
     return _STATES[codes].tolist()
 
 
-_STATES = np.array(["", "motoring", "generating", "idle"], dtype=object)
+_STATES = np.array(["", "motoring", "generating", "idle", "inactive"], dtype=object)
 
 
 @record
@@ -139,10 +143,15 @@ class CycleRow:
                 "losses": dict(self.losses), "electrical_share": self.electrical_share,
                 "negative_split": self.negative_split, "warnings": list(self.warnings),
                 "port_power": dict(self.port_power),
-                "machines": {name: {**{k: m[k] for k in MACHINE_KEYS},
-                                    "state": machine_state(m["power"])}
+                "machines": {name: {**{k: _number(m[k]) for k in MACHINE_KEYS},
+                                    "state": machine_state(m["power"], m["speed"])}
                              for name, m in self.machines.items()},
                 "buses": {bus: {"battery_power": w} for bus, w in self.battery_power.items()}}
+
+
+def _number(value: float) -> float | None:
+    """``value``, None for NaN (an inactive machine's speed)."""
+    return None if math.isnan(value) else value
 
 
 class Columns:

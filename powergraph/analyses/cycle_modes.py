@@ -40,18 +40,31 @@ METHOD = "modes (sweep per gear)"
 
 def mode_rows(model: Model, points: Points, keep_going: bool) -> Columns:
     """Every row of ``points`` (with a ``mode`` column) in its mode's case."""
-    base = cleared(model, points)
+    swept = cleared(model, points)
     columns = Columns(len(points), flow_names(model))
+    given = _complete(points)
     for code, mode in enumerate(points.mode_names):
         rows = np.flatnonzero(points.mode_codes == code)
-        if rows.size:
-            for i in _swept(base, mode, points, rows, columns).tolist():
-                single_row(base, points, i, True, columns)
+        left = [rows[~given[rows]]]
+        if given[rows].any():
+            left.append(_swept(swept, mode, points, rows[given[rows]], columns))
+        for i in np.sort(np.concatenate(left)).tolist():
+            single_row(model, points, i, True, columns)
     failed = np.flatnonzero(columns.verdict_codes >= FAILED)
     if failed.size and not keep_going:
         first = int(failed[0])
         raise refused(points, first, columns.verdict_texts[columns.verdict_codes[first]])
     return columns
+
+
+def _complete(points: Points) -> np.ndarray:
+    """The rows that give every column's value (no empty cell): those a mode's compiled
+    sweep may take; a row with an empty cell takes its mode's or the model's value,
+    one by one (:func:`~powergraph.analyses.cycle_rows.row_model`)."""
+    given = np.ones(len(points), dtype=bool)
+    for values in (*points.values, *(v for _, v in points.batteries)):
+        given &= ~np.isnan(values)
+    return given
 
 
 def _swept(base: Model, mode: str, points: Points, rows: np.ndarray,

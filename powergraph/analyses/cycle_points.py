@@ -172,9 +172,14 @@ class _Table:
 
     def add(self, rows: list[list[str]], starts: list[int]) -> None:
         """Convert a chunk of rows; the first problem (by row, then column) is an error."""
+        if self.layout.mode is not None and not all(map("".join, rows)):
+            rows, starts = self._full(rows, starts)      # blank rows (",,,"): skipped
+            if not rows:
+                return None
         flat, width = list(itertools.chain.from_iterable(rows)), self.layout.width
         cells = [flat[j::width] for j in range(width)]
-        converted = [_numbers(cells[c.position], c) for c in self.numbers]
+        converted = [_numbers(cells[c.position], c, self._may_be_empty(c))
+                     for c in self.numbers]
         problems = [p for _, p in converted if p is not None]
         if any(p[2].startswith("empty cell") for p in problems):
             full, full_starts = self._full(rows, starts)
@@ -189,6 +194,11 @@ class _Table:
         for part, (values, _) in zip(self.parts, converted):
             part.append(values)
         self.lines.append(np.array(starts, dtype=np.int64))
+
+    def _may_be_empty(self, column: Column) -> bool:
+        """In a cycle in modes, a port's or a bus's cell may be empty: not given in
+        this row (the row's mode, then the model, give the value)."""
+        return self.layout.mode is not None and column.kind != "time"
 
     def _codes(self, cells: list[str]) -> tuple[int, str, str] | None:
         """Append the chunk's mode codes; an unknown mode is a problem."""
@@ -223,27 +233,35 @@ class _Table:
                       duration_column=time.name if time else None)
 
 
-#: What an empty cell of a ``BUS.battery`` column is told (in a cycle of one
-#: mode every row gives the battery's power; "not given in this row" is not read yet).
-_EMPTY_BATTERY = (": a BUS.battery column gives the bus's battery power in every row (a "
-                  "number, in the header's unit)")
+#: What an empty cell is told in a cycle without a ``mode`` column (in one with, an
+#: empty port or bus cell is "not given in this row").
+_EMPTY = {"battery": ": a BUS.battery column gives the bus's battery power in every row "
+                     "(a number, in the header's unit)", "time": ""}
+_EMPTY_PORT = (": without a mode column every row gives each column's value (in a cycle in "
+               "modes an empty cell is the mode's or the model's value)")
 
 
-def _numbers(cells: list[str], column: Column):
+def _numbers(cells: list[str], column: Column, may_be_empty: bool = False):
     """``(SI values, None)`` of a column's cells, or ``(None, (k, name, problem))`` for
-    its first bad cell ``k``."""
+    its first bad cell ``k``; an empty cell is NaN where ``may_be_empty``."""
+    empty = None
+    if may_be_empty and not all(map(str.strip, cells)):
+        empty = np.array([not text.strip() for text in cells])
+        cells = ["nan" if blank else text for text, blank in zip(cells, empty)]
     try:
         raw = np.array(cells, dtype=float)
     except ValueError:
         k = next((k for k, text in enumerate(cells) if not _is_number(text)), 0)
         text = cells[k].strip()
         return None, (k, column.name, f"not a number: {brief(text)}" if text else
-                      "empty cell" + _EMPTY_BATTERY * (column.kind == "battery"))
+                      "empty cell" + _EMPTY.get(column.kind, _EMPTY_PORT))
     with np.errstate(over="ignore", invalid="ignore"):
         values = raw * column.scale
     limit = PORT_LIMITS.get(column.kind, np.finfo(float).max)   # a time: finite
     what = "power" if column.kind == "battery" else column.kind
     bad = ~(np.abs(values) <= limit)          # NaN and inf included
+    if empty is not None:
+        bad &= ~empty
     if not bad.any():
         return values, None
     k = int(np.argmax(bad))
@@ -319,7 +337,3 @@ def as_dict(points: Points, row: int) -> dict[str, float]:
     """``{PATH: SI value}`` of one row's port columns."""
     return {path: float(v[row]) for (path, _, _), v in zip(points.columns, points.values)}
 
-
-def batteries_of(points: Points, row: int) -> dict[str, float]:
-    """``{bus: battery power, W}`` of one row's ``BUS.battery`` columns."""
-    return {bus: float(v[row]) for bus, v in points.batteries}

@@ -150,11 +150,13 @@ def _flow_dicts(result: "CycleResult", part: slice) -> tuple[list, list, list]:
              for row in _by_row({k: v[part] for k, v in result.battery_power.items()})]
     machines: list[dict] = [{} for _ in range(size)]
     for name, quantities in result.machines.items():
-        states = machine_states(quantities["power"][part])
+        states = machine_states(quantities["power"][part], quantities["speed"][part])
         for k, values in enumerate(zip(*(quantities[key][part].tolist()
                                           for key in MACHINE_KEYS))):
             if states[k]:
-                machines[k][name] = {**dict(zip(MACHINE_KEYS, values)), "state": states[k]}
+                machines[k][name] = {**{key: None if isnan(v) else v
+                                        for key, v in zip(MACHINE_KEYS, values)},
+                                     "state": states[k]}
     return ports, machines, buses
 
 
@@ -168,13 +170,13 @@ def _by_row(columns: dict[str, np.ndarray]) -> list[dict[str, float]]:
 def flow_columns(result: "CycleResult") -> list[tuple[str, np.ndarray, bool]]:
     """``(header, values, state)`` of each flow column of the CSV: each other port's
     power, each machine's quantities and state (``state`` True: the machine's states,
-    from its power ``values``), each bus's battery power."""
+    from its quantities ``values``), each bus's battery power."""
     out = [(f"{name}.power [W]", values, False)
            for name, values in result.port_power.items()]
     for name, quantities in result.machines.items():
         out += [(f"{name}.{key} [{MACHINE_UNITS[key]}]", quantities[key], False)
                 for key in MACHINE_KEYS]
-        out.append((f"{name}.state", quantities["power"], True))
+        out.append((f"{name}.state", quantities, True))
     out += [(f"{bus}.battery [W]", values, False)
             for bus, values in result.battery_power.items()]
     return out
@@ -219,7 +221,8 @@ def _write_csv(result: "CycleResult", out: Any) -> None:
                                                    result.with_machines[part].tolist())],
             [warnings[w] if w in warnings else warnings.setdefault(w, _cell(w))
              for w in _warnings(result, part, lists=False)],
-            *(machine_states(values[part]) if state else _reprs(values[part])
+            *(machine_states(values["power"][part], values["speed"][part]) if state
+              else _reprs(values[part])
               for _, values, state in flows))
         out.write("\n".join(map(",".join, zip(*columns))) + "\n")
 

@@ -14,8 +14,9 @@ import numpy as np
 
 from powergraph.analyses.cycle_columns import CycleRow  # noqa: F401  (re-exported)
 from powergraph.analyses.cycle_columns import OK, Columns, flow_names, port_label
-from powergraph.analyses.cycle_points import Points, as_dict, batteries_of
+from powergraph.analyses.cycle_points import Points
 from powergraph.errors import ModelError, PowerGraphError, UsageError
+from powergraph.model.mode_specs import at_mode_point
 from powergraph.model.spec import Model
 from powergraph.statics.loss_sources import element_label, losses
 from powergraph.statics.verdicts import verdict_codes, verdict_of
@@ -32,7 +33,9 @@ class RowError(UsageError):
 
 def refused(points: Points, i: int, verdict: str) -> RowError:
     """The error for row ``i``, that cannot be solved (``verdict``: ``error: ...``)."""
-    return RowError(f"{points.source}: row {points.lines[i]}: cannot be solved: "
+    mode = points.mode(i)
+    where = f"row {points.lines[i]}" + (f" (mode {mode!r})" if mode is not None else "")
+    return RowError(f"{points.source}: {where}: cannot be solved: "
                     f"{verdict[7:]} (--keep-going, keep_going=True, leaves such rows "
                     "out of the totals)")
 
@@ -130,10 +133,59 @@ def cleared(model: Model, points: Points) -> Model:
     return model
 
 
+def row_base(model: Model, points: Points) -> Model:
+    """The model every row of ``points`` starts from (:func:`row_model`): in a cycle in
+    modes the model itself, else :func:`cleared`."""
+    return model if points.mode_codes is not None else cleared(model, points)
+
+
+def row_model(base: Model, points: Points, i: int) -> Model:
+    """Row ``i``'s model: ``base`` (:func:`row_base`) with the row's values.
+
+    In a cycle in modes the row's own values come first, then its mode's (the ports and
+    buses the mode sets, its inactive ports carrying nothing), then the model's: ``base``
+    is put at the mode's point (:func:`~powergraph.model.mode_specs.at_mode_point`) and
+    the row's cells set on it. An empty cell (NaN) gives nothing; a value for a port the
+    mode leaves inactive is refused. A load replaces the port's load of either kind.
+    """
+    mode = points.mode(i)
+    variant = base if mode is None else at_mode_point(base, mode)
+    for (_, index, kind), values in zip(points.columns, points.values):
+        value = float(values[i])
+        if math.isnan(value):
+            continue
+        if index in variant.inactive:
+            raise ModelError(f"{port_label(base.ports[index])} is inactive in mode {mode!r}: "
+                             f"it takes no {kind} (leave the cell empty in its rows)",
+                             f"modes.{mode}.inactive")
+        load = {} if kind == "speed" else {"power": None, "torque": None}
+        variant = variant.with_port(index, **{**load, kind: value})
+    for bus, values in points.batteries:
+        if not math.isnan(values[i]):
+            variant = variant.with_bus(bus, battery=float(values[i]))
+    return variant
+
+
+def unset(variant: Model, points: Points, i: int, missing_kind: str) -> list[str]:
+    """The quantities of row ``i``'s empty cells of ``missing_kind`` (``speed`` or
+    ``load``: a power or torque) that neither its mode nor the model gives
+    (``wheels.power``): what a row that cannot be solved for want of them lacks."""
+    missing = []
+    for (_, index, kind), values in zip(points.columns, points.values):
+        port = variant.ports[index]
+        if kind != "speed" and missing_kind == "load":
+            lacking = port.power is None and port.torque is None
+        else:
+            lacking = kind == missing_kind == "speed" and port.speed is None
+        if math.isnan(values[i]) and index not in variant.inactive and lacking:
+            missing.append(f"{port_label(port)}.{kind}")
+    return list(dict.fromkeys(missing))
+
+
 def single_rows(model: Model, points: Points, keep_going: bool = True) -> Columns:
     """One single solve per row, into preallocated columns; without ``keep_going`` the
     first row that cannot be solved is an error."""
-    base = cleared(model, points)
+    base = row_base(model, points)
     columns = Columns(len(points), flow_names(model))
     for i in range(len(points)):
         single_row(base, points, i, keep_going, columns)
@@ -142,18 +194,13 @@ def single_rows(model: Model, points: Points, keep_going: bool = True) -> Column
 
 def single_row(base: Model, points: Points, i: int, keep_going: bool,
                 columns: Columns) -> None:
-    """Row ``i`` by the single solve (``base``: the model with the loaded ports cleared),
-    into ``columns``."""
+    """Row ``i`` by the single solve (``base``: :func:`row_base`), into ``columns``."""
     from powergraph.statics.machine_report import (boundary_powers, electrical_share,
                                                    negative_split)
 
+    variant = None
     try:
-        variant = base
-        for path, value in as_dict(points, i).items():
-            _, index, kind = path.split(".")
-            variant = variant.with_port(int(index), **{kind: value})
-        for bus, value in batteries_of(points, i).items():
-            variant = variant.with_bus(bus, battery=value)
+        variant = row_model(base, points, i)
         result = _solve(variant, points.mode(i))
         crossing = boundary_powers(result)
         power_in = sum(p for p in crossing if p > 0) + 0.0
@@ -164,6 +211,11 @@ def single_row(base: Model, points: Points, i: int, keep_going: bool,
         reason = " ".join(str(error).split())
         verdict = "error: " + (reason if isinstance(error, PowerGraphError)
                                else f"numerical problem ({reason})")
+        kind = getattr(error, "missing", None)
+        missing = [] if variant is None or kind is None else unset(variant, points, i, kind)
+        if missing:
+            verdict += (f" (not given in this row, nor by mode {points.mode(i)!r} or the "
+                        f"model: {', '.join(missing)})")
         columns.fail(i, verdict)
         if not keep_going:
             raise refused(points, i, verdict)
@@ -190,7 +242,8 @@ def flows(result) -> tuple[dict, dict, dict]:
         if not port.is_machine:
             power = result.ports[port.index].power
             ports[label(port)] = (-power if port.role == "output" else power) + 0.0
-    machines = {label(port): {"speed": m.speed, "torque": m.torque, "power": m.power,
+    machines = {label(port): {"speed": math.nan if port.index in model.inactive else m.speed,
+                              "torque": m.torque, "power": m.power,
                               "electrical_power": m.electrical_power}
                 for port, m in zip(model.machines, result.machines)}
     return ports, machines, {name: b.battery_power for name, b in result.buses.items()}

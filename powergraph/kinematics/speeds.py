@@ -206,7 +206,8 @@ def _solve_reduced(model: Model, rows: Triplets, rhs: np.ndarray,
         raise KinematicsError(contradiction_message(model, elements, rows, rhs, known,
                                                     given, reduced, square))
     if not determined:
-        raise KinematicsError(_underdetermined_message(model, reduced, unknown, given))
+        raise KinematicsError(_underdetermined_message(model, reduced, unknown, given),
+                              missing="speed")
     return solution
 
 
@@ -257,14 +258,15 @@ def _given_speeds(model: Model, speeds: Mapping[str, float] | None, dof: int) ->
         if not given and dof == 1:
             if not model.inputs:
                 raise KinematicsError("no port gives a speed and no input is active: give "
-                                      "the speed of a port", "ports")
+                                      "the speed of a port", "ports", missing="speed")
             given = {model.inputs[0].component: 1.0}
     if len(given) != dof:
         plural = "s" if dof != 1 else ""
         raise KinematicsError(
             f"train has {dof} degree{plural} of freedom but {len(given)} speed"
             f"{'s were' if len(given) != 1 else ' was'} given"
-            + ("" if len(given) > dof else " (give a speed on more ports)"))
+            + ("" if len(given) > dof else " (give a speed on more ports)"),
+            missing=None if len(given) > dof else "speed")
     return given
 
 

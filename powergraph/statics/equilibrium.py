@@ -67,7 +67,7 @@ def loads_of(model: Model, kin: Kinematics) -> Loads:
     if not loaded:
         if not model.inputs:
             raise StaticsError("no port has a load and no input is active: give the power "
-                               "or torque of a port", "ports")
+                               "or torque of a port", "ports", missing="load")
         first = model.inputs[0]
         loaded_values = [(first, 1.0, None)]
     else:
@@ -297,7 +297,8 @@ def _solve(system: Triplets, rhs: np.ndarray, n_el: int,
         missing = max(1, loads.needed - len(loads.given))
         raise StaticsError(
             f"the loads are not determined: this train takes the power or torque of "
-            f"{loads.needed} port(s), {len(loads.given)} given; give {missing} more", "ports")
+            f"{loads.needed} port(s), {len(loads.given)} given; give {missing} more", "ports",
+            missing="load")
     solution = np.linalg.lstsq(matrix, rhs, rcond=None)[0]
     residual = matrix @ solution - rhs
     if np.max(np.abs(residual)) > 1e-8 * max(1.0, float(np.max(np.abs(rhs)))):

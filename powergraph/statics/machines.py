@@ -181,7 +181,7 @@ def _check_count(model: Model, kin, balanced: list) -> None:
     if given + len(balanced) < needed:
         raise StaticsError(f"the loads are not determined: {counted}; give "
                            f"{needed - given - len(balanced)} more (a port's power or "
-                           f"torque, or a bus's battery power)", "ports")
+                           f"torque, or a bus's battery power)", "ports", missing="load")
     raise StaticsError(f"the given loads contradict each other: {counted}; drop "
                        f"{given + len(balanced) - needed} (or set a battery to free)", "ports")
 

@@ -266,7 +266,9 @@ def _check_dof(dof: int, need: int, engaged: tuple[str, ...], path: str,
     if dof > need:
         more = dof - need
         raise KinematicsError(f"engages {listing}: leaves {dof} DOF, the train needs {more} "
-                              f"more engaged element{'s' if more > 1 else ''}", path)
+                              f"more engaged element{'s' if more > 1 else ''} (or a given "
+                              f"speed on {more} more port{'s' if more > 1 else ''})", path,
+                              missing="speed")
     if dof < need:
         free = releasing() if releasing is not None else ()
         hint = (f"; without {' or '.join(free)} it would have {need}" if free else "")

@@ -57,7 +57,8 @@ def test_the_first_row_that_cannot_be_solved_is_the_error_in_file_order() -> Non
     model = load_model(ROOT / "models" / "simpson_3speed.yaml")
     text = ("mode,in.speed [rpm],in.power [kW],duration [s]\n"
             "2,2500,20,1\n1,2500,-20,1\n2,2500,0,1\n1,2500,20,1\n")
-    with pytest.raises(UsageError, match=r"row 3: cannot be solved: mode 1: no consistent"):
+    with pytest.raises(UsageError, match=r"row 3 \(mode '1'\): cannot be solved: mode 1: "
+                                         r"no consistent"):
         cycle(model, io.StringIO(text))
     kept = cycle(model, io.StringIO(text), keep_going=True)
     assert kept.left_out == [1]

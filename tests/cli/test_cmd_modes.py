@@ -115,7 +115,8 @@ VOLT = MODELS / "volt_gen1.yaml"
      "solve", "ports[0] (engine) gives 209.44 rad/s and ports[1] (MG-A) 198.968 rad/s, "
               "but they are on one rigid body 'A/E'"),
     (("engage: [C1, C3]  ", "engage: [C3]  "), "solve",
-     "modes.series: engages C3: leaves 3 DOF, the train needs 1 more engaged element"),
+     "modes.series: engages C3: leaves 3 DOF, the train needs 1 more engaged element (or a "
+     "given speed on 1 more port)"),
 ])
 def test_hybrid_mode_mistakes_exit_2_with_one_line(change, command, message, tmp_path,
                                                    capsys) -> None:

@@ -251,7 +251,8 @@ def test_too_few_elements_leaves_dof_and_says_how_many_more() -> None:
     with pytest.raises(KinematicsError) as info:
         solve_mode(_ravigneaux_with({"x": ["C1"]}), "x")
     assert str(info.value) == ("modes.x: engages C1: leaves 2 DOF, the train needs 1 more "
-                               "engaged element")
+                               "engaged element (or a given speed on 1 more port)")
+    assert info.value.missing == "speed"
 
 
 def test_elements_that_lock_the_train_are_refused() -> None:
