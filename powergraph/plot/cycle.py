@@ -3,7 +3,8 @@ operating point; for a train with machines, the engine's (every other port's), e
 machine's and each battery's power, and under it the electrical path's share.
 
 A row that could not be solved (``keep_going``) is a gap in every line: its values are
-unknown, not zero.
+unknown, not zero. In a cycle in modes every other run of rows in one mode is shaded, and
+each run wide enough for it is named at the top of the powers' axes.
 """
 from __future__ import annotations
 
@@ -20,6 +21,8 @@ HYBRID_FIGSIZE, HYBRID_HEIGHTS = (7.5, 5.4), (2.2, 1.0)
 SHARE_LIMIT = 500.0
 #: The figure of a cycle without machines.
 FIGSIZE = (6.4, 4.8)
+#: A run of rows in one mode is named when it spans at least this share of the time.
+NAMED_RUN = 0.07
 
 
 def cycle_axes(figure: Any, result: Any) -> Any:
@@ -81,6 +84,7 @@ def _plain_powers(result: Any, ax: Any, kwargs: dict) -> None:
     for values, label in ((result.power_in, "in"), (result.power_out, "out"),
                           (result.loss, "loss")):
         ax.stairs(np.where(failed, np.nan, values / 1e3), t, label=label, **kwargs)
+    _modes(result, ax)
     ax.set_xlabel("time [s]", **PLAIN)
     ax.set_ylabel("power [kW]", **PLAIN)
     ax.set_title(f"{result.name}: duty cycle", **PLAIN)
@@ -99,12 +103,32 @@ def _hybrid_powers(result: Any, ax: Any, kwargs: dict) -> None:
         options = {"linewidth": 1.6 if style == "-" else 1.4, "linestyle": style,
                    "color": next(colors), **kwargs}
         ax.stairs(values / 1e3, t, label=label, baseline=None, **options)
+    _modes(result, ax)
     ax.set_ylabel("power [kW]", **PLAIN)
     ax.set_title(f"{result.name}: duty cycle", **PLAIN)
     ax.grid(True, linewidth=0.4, alpha=0.5)
     plain(ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
                     fontsize="small", title="> 0: an input feeding in,\nan output taking out,\n"
                     "a machine motoring,\na battery discharging", title_fontsize="small", alignment="left"))
+
+
+def _modes(result: Any, ax: Any) -> None:
+    """Every other run of rows in one mode shaded, the runs that span at least
+    :data:`NAMED_RUN` of the time named at the top (nothing without a mode column)."""
+    if result.mode_codes is None or not len(result.mode_codes):
+        return
+    t, codes = _edges(result), np.asarray(result.mode_codes)
+    starts = np.flatnonzero(np.diff(codes, prepend=-1) != 0)
+    ends = np.append(starts[1:], len(codes))
+    runs = list(zip(t[starts], t[ends]))
+    ax.broken_barh([(a, b - a) for a, b in runs[1::2]], (0.0, 1.0), color="0.5", alpha=0.1,
+                   linewidth=0, transform=ax.get_xaxis_transform(), zorder=0)
+    ax.set_ylim(top=ax.get_ylim()[1] + 0.12 * np.ptp(ax.get_ylim()))   # room for the names
+    for (a, b), first in zip(runs, starts):
+        if b - a >= NAMED_RUN * t[-1]:
+            ax.text((a + b) / 2, 0.985, result.mode_names[codes[first]], ha="center",
+                    va="top", fontsize="x-small", transform=ax.get_xaxis_transform(),
+                    clip_on=True, **PLAIN)
 
 
 def _clip(ax: Any, share: np.ndarray) -> None:

@@ -176,3 +176,22 @@ def test_blank_rows_are_skipped_and_a_mode_is_still_required(volt) -> None:
     assert len(kept.durations) == 2
     with pytest.raises(UsageError, match=r"row 2, column 'mode': empty cell"):
         cycle(volt, io.StringIO(HEADER + "0,,,,,400,10,\n"))
+
+
+def test_the_plot_names_the_runs_of_rows_in_one_mode(result) -> None:
+    """The six rows run as one-motor EV (2 rows), two-motor EV, series, power split (2):
+    four runs over 60 s, each at least 10 s wide: all named, every other one shaded."""
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    matplotlib.use("Agg")
+    durations = result.durations.tolist()
+    assert durations == [10.0] * 6
+    top, _ = result.plot()
+    names = [t.get_text() for t in top.texts]
+    assert names == ["one-motor EV", "two-motor EV", "series", "power split"]
+    centres = [t.get_position()[0] for t in top.texts]
+    assert centres == pytest.approx([10.0, 25.0, 35.0, 50.0])
+    shaded = [c for c in top.collections if c.get_alpha() == 0.1]
+    assert len(shaded) == 1 and len(shaded[0].get_paths()) == 2      # runs 2 and 4
+    plt.close("all")
