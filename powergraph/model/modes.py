@@ -104,7 +104,8 @@ def resolve(model: Model, mode: str | None,
 
 def idle_components(model: Model, links, bodies, body_of: Mapping[str, str]) -> set[str]:
     """The components joined to no active port and not to the frame (docs/modes.md):
-    the bodies of ``links`` (meshes joining their two gears and carrier, couplings and
+    the bodies of ``links`` (meshes joining their two gears and carrier — a pair the frame
+    carries only its two gears: on fixed axes it can turn by itself —, couplings and
     freewheels — held or not — their two members) grouped, and every group without the
     frame's body or an active port's body.
 
@@ -138,7 +139,9 @@ def idle_components(model: Model, links, bodies, body_of: Mapping[str, str]) -> 
 
     kinds = {e.index: e.kind for e in model.shift_elements}
     for link in links:
-        if link.type == "mesh":
+        if link.type == "mesh" and body_of[link.carrier] == body_of[model.frame]:
+            join(*link.between)       # a gear pair on fixed axes: it may turn on its own
+        elif link.type == "mesh":
             join(link.between[0], link.between[1], link.carrier)
         elif link.type == "coupling" or kinds.get(link.index) == "freewheel":
             join(*link.between)

@@ -85,6 +85,7 @@ HAND_TESTED = {
     "ths2_power_split.yaml": "tests/statics/test_machines.py::"
                              "test_the_ths2_model_file_with_ideal_meshes_is_the_hand_derivation",
     "volt_gen1.yaml": "tests/statics/test_hybrid_modes.py (every mode, by hand)",
+    "honda_immd.yaml": "tests/statics/test_honda_immd.py (every mode, by hand)",
 }
 
 
