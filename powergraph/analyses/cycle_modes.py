@@ -27,8 +27,8 @@ import numpy as np
 
 from powergraph.analyses.cycle_columns import FAILED, Columns, flow_names
 from powergraph.analyses.cycle_points import Points, read_points  # noqa: F401 (doctest)
-from powergraph.analyses.cycle_rows import (NUMERICAL, _fill, cleared, refused, single_row,
-                                            slices)
+from powergraph.analyses.cycle_rows import (NUMERICAL, _fill, cleared, refused, row_base,
+                                            single_row, slices)
 from powergraph.errors import ModelError, UsageError
 from powergraph.model.spec import Model
 from powergraph.statics.case import TrainCase
@@ -40,7 +40,7 @@ METHOD = "modes (sweep per gear)"
 
 def mode_rows(model: Model, points: Points, keep_going: bool) -> Columns:
     """Every row of ``points`` (with a ``mode`` column) in its mode's case."""
-    swept = cleared(model, points)
+    swept, base = cleared(model, points), row_base(model, points)
     columns = Columns(len(points), flow_names(model))
     given = _complete(points)
     for code, mode in enumerate(points.mode_names):
@@ -49,7 +49,7 @@ def mode_rows(model: Model, points: Points, keep_going: bool) -> Columns:
         if given[rows].any():
             left.append(_swept(swept, mode, points, rows[given[rows]], columns))
         for i in np.sort(np.concatenate(left)).tolist():
-            single_row(model, points, i, True, columns)
+            single_row(base, points, i, True, columns)
     failed = np.flatnonzero(columns.verdict_codes >= FAILED)
     if failed.size and not keep_going:
         first = int(failed[0])

@@ -238,7 +238,7 @@ class _Table:
 _EMPTY = {"battery": ": a BUS.battery column gives the bus's battery power in every row "
                      "(a number, in the header's unit)", "time": ""}
 _EMPTY_PORT = (": without a mode column every row gives each column's value (in a cycle in "
-               "modes an empty cell is the mode's or the model's value)")
+               "modes an empty cell is 'not given in this row')")
 
 
 def _numbers(cells: list[str], column: Column, may_be_empty: bool = False):

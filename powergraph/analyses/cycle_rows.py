@@ -16,7 +16,7 @@ from powergraph.analyses.cycle_columns import CycleRow  # noqa: F401  (re-export
 from powergraph.analyses.cycle_columns import OK, Columns, flow_names, port_label
 from powergraph.analyses.cycle_points import Points
 from powergraph.errors import ModelError, PowerGraphError, UsageError
-from powergraph.model.mode_specs import at_mode_point
+from powergraph.model.mode_specs import at_mode_point, spec_of
 from powergraph.model.spec import Model
 from powergraph.statics.loss_sources import element_label, losses
 from powergraph.statics.verdicts import verdict_codes, verdict_of
@@ -134,19 +134,27 @@ def cleared(model: Model, points: Points) -> Model:
 
 
 def row_base(model: Model, points: Points) -> Model:
-    """The model every row of ``points`` starts from (:func:`row_model`): in a cycle in
-    modes the model itself, else :func:`cleared`."""
-    return model if points.mode_codes is not None else cleared(model, points)
+    """The model every row of ``points`` starts from (:func:`row_model`): :func:`cleared`,
+    and in a cycle in modes the speeds of the points' speed columns cleared too (each
+    column gives its quantity in every row, or leaves it to the row's mode)."""
+    base = cleared(model, points)
+    if points.mode_codes is None:
+        return base
+    for _, index, kind in points.columns:
+        if kind == "speed":
+            base = base.with_port(index, speed=None)
+    return base
 
 
 def row_model(base: Model, points: Points, i: int) -> Model:
     """Row ``i``'s model: ``base`` (:func:`row_base`) with the row's values.
 
-    In a cycle in modes the row's own values come first, then its mode's (the ports and
-    buses the mode sets, its inactive ports carrying nothing), then the model's: ``base``
-    is put at the mode's point (:func:`~powergraph.model.mode_specs.at_mode_point`) and
-    the row's cells set on it. An empty cell (NaN) gives nothing; a value for a port the
-    mode leaves inactive is refused. A load replaces the port's load of either kind.
+    In a cycle in modes an empty cell (NaN) is *not given in this row*: the row's mode
+    gives the value if it sets one (its ports and buses), else the row has none (a load
+    or speed the mode's other values fix, or a free battery). ``base`` is put at the
+    mode's point (:func:`~powergraph.model.mode_specs.at_mode_point`: its inactive ports
+    carrying nothing) and the row's cells set on it; a value for a port the mode leaves
+    inactive is refused. A load replaces the port's load of either kind.
     """
     mode = points.mode(i)
     variant = base if mode is None else at_mode_point(base, mode)
@@ -161,14 +169,17 @@ def row_model(base: Model, points: Points, i: int) -> Model:
         load = {} if kind == "speed" else {"power": None, "torque": None}
         variant = variant.with_port(index, **{**load, kind: value})
     for bus, values in points.batteries:
-        if not math.isnan(values[i]):
-            variant = variant.with_bus(bus, battery=float(values[i]))
+        battery = float(values[i])
+        if math.isnan(battery):     # not given in this row: the mode's, else free
+            battery = variant.buses[bus].battery
+            battery = None if battery is None or math.isnan(battery) else battery
+        variant = variant.with_bus(bus, battery=battery)
     return variant
 
 
 def unset(variant: Model, points: Points, i: int, missing_kind: str) -> list[str]:
     """The quantities of row ``i``'s empty cells of ``missing_kind`` (``speed`` or
-    ``load``: a power or torque) that neither its mode nor the model gives
+    ``load``: a power or torque, or a battery's power) that its mode does not give
     (``wheels.power``): what a row that cannot be solved for want of them lacks."""
     missing = []
     for (_, index, kind), values in zip(points.columns, points.values):
@@ -179,6 +190,11 @@ def unset(variant: Model, points: Points, i: int, missing_kind: str) -> list[str
             lacking = kind == missing_kind == "speed" and port.speed is None
         if math.isnan(values[i]) and index not in variant.inactive and lacking:
             missing.append(f"{port_label(port)}.{kind}")
+    if missing_kind == "load":
+        spec = spec_of(variant, points.mode(i))
+        missing += [f"{bus}.battery" for bus, values in points.batteries
+                    if math.isnan(values[i]) and variant.buses[bus].battery is None
+                    and (spec is None or bus not in spec.buses)]
     return list(dict.fromkeys(missing))
 
 
@@ -214,8 +230,8 @@ def single_row(base: Model, points: Points, i: int, keep_going: bool,
         kind = getattr(error, "missing", None)
         missing = [] if variant is None or kind is None else unset(variant, points, i, kind)
         if missing:
-            verdict += (f" (not given in this row, nor by mode {points.mode(i)!r} or the "
-                        f"model: {', '.join(missing)})")
+            verdict += (f" (not given in this row nor by mode {points.mode(i)!r}: "
+                        f"{', '.join(missing)})")
         columns.fail(i, verdict)
         if not keep_going:
             raise refused(points, i, verdict)

@@ -1,8 +1,9 @@
-"""A duty cycle of a multi-mode hybrid (powergraph.analyses.cycle_modes, cycle_rows): an
-empty cell is "not given in this row" — the row's own values first, then its mode's, then
-the model's; a port the mode switches off takes no value; a row that lacks a value it
-needs is an error naming the row, the mode and the quantity; every row's machine columns
-are the single solve's.
+"""A duty cycle of a multi-mode hybrid (powergraph.analyses.cycle_modes, cycle_rows): a
+column gives its quantity in every row in place of the model's, and an empty cell is "not
+given in this row" — the mode's value if it sets one, else none (a load the mode's other
+values fix, a free battery); a port the mode switches off takes no value; a row that
+lacks a value it needs is an error naming the row, the mode and the quantity; every
+row's machine columns are the single solve's.
 
 The train is ``models/volt_gen1.yaml`` with ideal meshes (as in
 ``tests/statics/test_hybrid_modes.py``), so the numbers follow by hand:
@@ -38,8 +39,8 @@ HEADER = ("time [s],mode,engine.speed [rpm],engine.power [kW],MG-A.speed [rpm],"
 ROWS = ("0,one-motor EV,,,,400,10,\n"         # the row's 10 kW, not the mode's 20 kW
         "10,one-motor EV,,,,600,,\n"          # wheels' power empty: the mode's 20 kW
         "20,two-motor EV,,,1500,800,20,\n"
-        "30,series,2500,40,,500,,\n"          # battery empty: the model's 0 W
-        "40,power split,,,,800,,\n"           # engine empty: the model's 2000 rpm, 30 kW
+        "30,series,2500,40,,500,,0\n"
+        "40,power split,2000,,,800,25,0\n"    # engine's power empty: the balance fixes it
         "50,power split,2000,30,,900,,-5\n")
 
 
@@ -67,8 +68,13 @@ def test_empty_cells_take_the_mode_then_the_model_by_hand(result) -> None:
     assert series.machines["MG-A"]["speed"] == pytest.approx(2500 * RPM, rel=1e-12)
     assert series.battery_power["dc"] == pytest.approx(0.0, abs=1e-6)
     assert series.port_power["wheels"] == pytest.approx(0.81 * 40e3, rel=1e-12)
-    split = rows[4]     # the engine's cells empty: the model's 2000 rpm and 30 kW
-    assert split.port_power["engine"] == pytest.approx(30e3, rel=1e-12)
+    split = rows[4]     # 25 kW at the wheels, the battery at 0 W: the engine gives
+    assert split.port_power["wheels"] == pytest.approx(25e3, rel=1e-12)
+    electric = sum(m["electrical_power"] for m in split.machines.values())
+    assert electric == pytest.approx(0.0, abs=1e-6)
+    mechanical = sum(m["power"] for m in split.machines.values())
+    # ideal meshes: what the engine gives is the wheels' power plus the machines' losses
+    assert split.port_power["engine"] == pytest.approx(25e3 - mechanical, rel=1e-12)
     assert split.machines["MG-A"]["speed"] == pytest.approx(2000 * RPM, rel=1e-12)
 
 
@@ -90,16 +96,18 @@ def test_a_machine_the_mode_switches_off_is_inactive_in_every_form(result) -> No
 
 
 def test_every_row_is_its_single_solve_built_by_hand(volt, result) -> None:
-    """Each row against ``solve --mode`` of the model with the row's values set by hand
-    (what the row gives, and for an empty cell the mode's or the model's value)."""
+    """Each row against ``solve --mode`` of the model with the row's values set by hand:
+    what the row gives, for an empty cell the mode's value or none."""
     kw, rpm = 1e3, RPM
     variants = [
         ("one-motor EV", {3: dict(speed=400 * rpm, power=10 * kw, torque=None)}, {}),
-        ("one-motor EV", {3: dict(speed=600 * rpm)}, {}),
+        ("one-motor EV", {3: dict(speed=600 * rpm)}, {}),       # the mode's 20 kW, free
         ("two-motor EV", {1: dict(speed=1500 * rpm), 3: dict(speed=800 * rpm, power=20 * kw,
                                                               torque=None)}, {}),
-        ("series", {0: dict(speed=2500 * rpm, power=40 * kw), 3: dict(speed=500 * rpm)}, {}),
-        ("power split", {3: dict(speed=800 * rpm)}, {}),
+        ("series", {0: dict(speed=2500 * rpm, power=40 * kw), 3: dict(speed=500 * rpm)},
+         {"dc": 0.0}),
+        ("power split", {0: dict(speed=2000 * rpm, power=None),
+                         3: dict(speed=800 * rpm, power=25 * kw)}, {"dc": 0.0}),
         ("power split", {0: dict(speed=2000 * rpm, power=30 * kw),
                          3: dict(speed=900 * rpm)}, {"dc": -5 * kw}),
     ]
@@ -153,8 +161,7 @@ def test_a_row_lacking_a_value_names_the_row_the_mode_and_the_quantity() -> None
     message = str(caught.value)
     assert message.startswith("points: row 3 (mode 'one-motor EV'): cannot be solved:")
     assert message.count("wheels.power") == 1
-    assert "(not given in this row, nor by mode 'one-motor EV' or the model: " \
-           "wheels.power)" in message
+    assert "(not given in this row nor by mode 'one-motor EV': wheels.power)" in message
     kept = cycle(model, io.StringIO(text), keep_going=True)
     assert kept.left_out == [1] and kept.rows[0].power_out == pytest.approx(10e3, rel=1e-9)
 
@@ -165,8 +172,8 @@ def test_a_speed_the_row_leaves_out_is_named_too() -> None:
     del data["modes"]["two-motor EV"]["ports"]["MG-A"]
     model = model_from_dict(data)
     with pytest.raises(UsageError, match=r"row 2 \(mode 'two-motor EV'\): cannot be "
-                       r"solved: .*\(not given in this row, nor by mode 'two-motor EV' or "
-                       r"the model: MG-A\.speed\)"):
+                       r"solved: .*\(not given in this row nor by mode 'two-motor EV': "
+                       r"MG-A\.speed\)"):
         cycle(model, io.StringIO(HEADER + "0,two-motor EV,,,,800,20,\n1,two-motor EV,,,,800,20,\n"))
 
 
