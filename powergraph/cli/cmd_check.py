@@ -67,7 +67,8 @@ def _check_modes(args: argparse.Namespace, model) -> int:
     each = (f"each solves with {next(iter(dofs.values()))} DOF" if len(set(dofs.values())) == 1
             else "DOF " + ", ".join(f"{m} {d}" for m, d in dofs.items()))
     print(f"{args.model}: ok — {model.name}: {len(model.components)} components, "
-          f"{len(model.shift_elements)} shift elements, modes {', '.join(model.modes)}: "
+          f"{len(model.shift_elements)} shift element{'s' * (len(model.shift_elements) != 1)}, "
+          f"modes {', '.join(model.modes)}: "
           f"{each}")
     print_caveats(model.warnings)
     return 0
