@@ -212,11 +212,13 @@ def test_small_runs_and_solve_import_no_numba() -> None:
 def test_kernels_are_kept_in_the_cache_directory(rv_sweep, kernels_always, tmp_path,
                                                  monkeypatch) -> None:
     """The generated source goes to $POWERGRAPH_CACHE_DIR; "" keeps it in memory; a
-    directory that cannot be made is left silently for memory."""
+    directory that cannot be made is left silently for memory (where the kernel already
+    compiled in memory is reused)."""
     from powergraph.analyses.sweep import kernel
 
     values = rv_variants(100, seed=4)
     expected = rv_sweep(values, quiet=True)
+    functions = []
     for setting, files in ((str(tmp_path / "k"), 1), ("", 0), ("/proc/no/such/dir", 0)):
         monkeypatch.setenv(kernel.CACHE_ENV, setting)
         fresh = compile_sweep(load_model(RV), list(PATHS))
@@ -224,7 +226,9 @@ def test_kernels_are_kept_in_the_cache_directory(rv_sweep, kernels_always, tmp_p
         assert fresh.kernel_compile_s > 0
         written = list((tmp_path / "k").glob("powergraph_kernel_*.py"))
         assert len(written) == 1 if files else True
+        functions.append({f for k in fresh._kernels.values() for f in k._functions.values()})
     assert kernel.cache_directory() is None
+    assert functions[1] == functions[2] and functions[0].isdisjoint(functions[1])
 
 
 def test_a_learned_pattern_gets_its_own_kernel(kernels_always) -> None:

@@ -21,6 +21,7 @@ external torques of the other bodies (the reactions). Every coefficient comes fr
 """
 from __future__ import annotations
 
+import functools
 from typing import TYPE_CHECKING, Callable, Sequence
 
 import numpy as np
@@ -50,8 +51,26 @@ def applies(layout: "Layout") -> bool:
             and 0 < layout.n_elements <= MAX_SYMBOLIC)
 
 
+@functools.lru_cache(maxsize=64)
+def symbolic_backend(layout: "Layout") -> "SymbolicBackend":
+    """The :class:`SymbolicBackend` of ``layout``, derived once per process: it depends on
+    the layout alone (its symbols stand for every value a sweep varies), so sweeps of the
+    same structure — the same train swept again, the modes of a cycle row after row, a
+    model changed only in its numbers — share its derivation and its closed forms.
+
+    >>> from powergraph.model import load_model
+    >>> from powergraph.analyses.sweep import compile_sweep
+    >>> one = compile_sweep(load_model("models/rv40e_wang2021.yaml"), ["links.1.efficiency"])
+    >>> two = compile_sweep(load_model("models/rv40e_wang2021.yaml"), ["links.1.efficiency"])
+    >>> one is two, one.backend is two.backend
+    (False, True)
+    """
+    return SymbolicBackend(layout)
+
+
 class SymbolicBackend:
-    """Speeds, element forces and reactions of a train as compiled closed forms."""
+    """Speeds, element forces and reactions of a train as compiled closed forms
+    (:func:`symbolic_backend` keeps one per layout)."""
 
     name = "symbolic"
 
@@ -138,29 +157,16 @@ class ClosedForm:
 
     def __init__(self, backend: SymbolicBackend, moving: tuple[int, ...],
                  codes: tuple[int, ...], start: tuple[int, ...] | None = None) -> None:
-        import sympy as sp
-
-        self.layout = lay = backend.layout
+        self.layout = backend.layout
         self.moving, self.codes = moving, codes
         self.start = codes if start is None else start
         self.passes = 1 if self.start == codes else 2
         self.hits = 0              # variants taken so far (the caller orders by it)
-        n = lay.n_elements
-        etas, loads = sp.symbols(f"e0:{n}"), sp.symbols(f"p0:{len(lay.loads)}")
-        det_k, scale_k, speeds = backend.kinematics
-        torques = [_torque(load, value, speeds) for load, value in zip(lay.loads, loads)]
-        self._patterns = ([(0,) * len(moving)] + ([self.start] if self.passes == 2 else [])
-                          + [codes])
-        checks = [_balance(backend, _factors(sp, n, moving, pattern, etas), torques)
-                  for pattern in self._patterns]
-        outputs = [det_k, scale_k, *speeds, *torques,
-                   *[x for c in checks for x in (c[0], c[1], *c[2])]]
         #: The arguments (ratio magnitudes, efficiencies, given speeds, loads: symbols per
         #: element, speed and load) and the expressions the function computes, in order
         #: (read again by :mod:`~powergraph.analyses.sweep.kernel`).
-        self.symbols = (tuple(backend.q), tuple(etas), tuple(backend.w), tuple(loads))
-        self.expressions = tuple(outputs)
-        self._function = _lambdify(sp, [backend.q, etas, backend.w, loads], outputs)
+        self._patterns, self.symbols, self.expressions, self._function = _composed(
+            backend, moving, codes, self.start)
 
     @property
     def checked(self) -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
@@ -203,6 +209,28 @@ class ClosedForm:
             return True
         out.put(valid, target, valid)
         return valid
+
+
+@functools.lru_cache(maxsize=256)
+def _composed(backend: SymbolicBackend, moving: tuple[int, ...], codes: tuple[int, ...],
+              start: tuple[int, ...]) -> tuple:
+    """What a :class:`ClosedForm` computes — the patterns it checks, its arguments, its
+    expressions and their compiled function — derived once per backend and pattern."""
+    import sympy as sp
+
+    lay = backend.layout
+    n = lay.n_elements
+    etas, loads = sp.symbols(f"e0:{n}"), sp.symbols(f"p0:{len(lay.loads)}")
+    det_k, scale_k, speeds = backend.kinematics
+    torques = [_torque(load, value, speeds) for load, value in zip(lay.loads, loads)]
+    patterns = [(0,) * len(moving)] + ([start] if start != codes else []) + [codes]
+    checks = [_balance(backend, _factors(sp, n, moving, pattern, etas), torques)
+              for pattern in patterns]
+    outputs = [det_k, scale_k, *speeds, *torques,
+               *[x for c in checks for x in (c[0], c[1], *c[2])]]
+    symbols = (tuple(backend.q), tuple(etas), tuple(backend.w), tuple(loads))
+    return (tuple(patterns), symbols, tuple(outputs),
+            _lambdify(sp, [backend.q, etas, backend.w, loads], outputs))
 
 
 def _factors(sp, n: int, moving, codes, etas) -> list:

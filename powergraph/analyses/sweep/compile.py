@@ -117,7 +117,7 @@ class CompiledSweep:
                              "use backend='numeric'")
         use_symbolic = backend == "symbolic" or (backend == "auto"
                                                  and backends.applies(self.layout))
-        self.backend = backends.SymbolicBackend(self.layout) if use_symbolic \
+        self.backend = backends.symbolic_backend(self.layout) if use_symbolic \
             else backends.NumericBackend(self.layout)
         self._base = base_values(model, self.layout)
         self._element = {link: k for k, link in enumerate(self.layout.links)}

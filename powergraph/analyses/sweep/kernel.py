@@ -332,7 +332,8 @@ def cache_directory() -> Path | None:
 
 def _load(source_of: Callable[[bool], str]) -> Callable:
     """The kernel function of the generated source: imported from the cache directory
-    (numba's own cache beside it), or executed in memory when there is none."""
+    (numba's own cache beside it), or executed in memory when there is none; either way
+    once per process (the module, or the function, is kept)."""
     directory = cache_directory()
     if directory is not None:
         source = source_of(True)
@@ -352,9 +353,18 @@ def _load(source_of: Callable[[bool], str]) -> Callable:
             return module.kernel
         except (OSError, ImportError, SyntaxError):
             pass                              # fall back to memory
-    namespace: dict[str, Any] = {}
-    exec(compile(source_of(False), "<powergraph sweep kernel>", "exec"), namespace)
-    return namespace["kernel"]
+    source = source_of(False)
+    key = hashlib.sha256(source.encode()).hexdigest()
+    kernel = _IN_MEMORY.get(key)
+    if kernel is None:                        # compiled once per process, like a file's
+        namespace: dict[str, Any] = {}
+        exec(compile(source, "<powergraph sweep kernel>", "exec"), namespace)
+        kernel = _IN_MEMORY[key] = namespace["kernel"]
+    return kernel
+
+
+#: The kernels kept in memory (no cache directory), by the hash of their source.
+_IN_MEMORY: dict[str, Callable] = {}
 
 
 class Kernel:
