@@ -86,17 +86,33 @@ def assembles(coaxial: list[np.ndarray], coefficients: list[np.ndarray], planets
 
 
 def _search_turn(z: list[np.ndarray], a: list[np.ndarray], n: int) -> np.ndarray:
-    """Three or more meshes: try ``t = (m - z_1/n) / a_1`` for ``m = 0 .. |a_1| - 1``."""
-    size = len(z[0])
+    """Three or more meshes: try ``t = (m - z_1/n) / a_1`` for ``m = 0 .. |a_1| - 1``,
+    each row until one fits (the rows left shrink as ``m`` grows: most fit at a small
+    ``m``, while ``|a_1|`` runs to the thousands)."""
+    found = np.zeros(len(z[0]), dtype=bool)
+    rows = np.arange(len(z[0]))
     bound = np.abs(a[0])
-    found = np.zeros(size, dtype=bool)
     modulus = np.abs(n * a[0])
     for m in range(int(bound.max(initial=0))):
-        fits = m < bound
+        left = m < bound
+        if not left.all():
+            rows, z, a, bound, modulus = _rows(left, rows, z, a, bound, modulus)
+        if rows.size == 0:
+            break
+        fits = np.ones(rows.size, dtype=bool)
         for zj, aj in zip(z[1:], a[1:]):
             fits &= (zj * a[0] + aj * (n * m - z[0])) % modulus == 0
-        found |= fits
+        if fits.any():
+            found[rows[fits]] = True
+            rows, z, a, bound, modulus = _rows(~fits, rows, z, a, bound, modulus)
     return found
+
+
+def _rows(keep: np.ndarray, rows: np.ndarray, z: list, a: list, bound: np.ndarray,
+          modulus: np.ndarray) -> tuple:
+    """The rows of the turn search still searched."""
+    return (rows[keep], [v[keep] for v in z], [v[keep] for v in a], bound[keep],
+            modulus[keep])
 
 
 def relative_turns(first: Any, pp_meshes: Sequence[tuple[Any, Any, Any, Any]]
