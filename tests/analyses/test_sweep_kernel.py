@@ -9,6 +9,7 @@ once (module-scoped evaluators), and a kernel already compiled in the process is
 """
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -85,8 +86,20 @@ SAME_AS_LISTED = {"rv40e_profile_error.yaml", "rv40e_tolerances.yaml", "cycloid_
                   "planetary_2kh_two_stages_100.yaml", "ravigneaux_second.yaml",
                   "ravigneaux_reverse.yaml", "planetary_2kh_carrier_to_ring.yaml",
                   "planetary_2kh_ring_to_sun.yaml", "planetary_2kh_sun_to_carrier.yaml"}
+#: Models whose kernel is another model's but for its numbers: the generated source is the
+#: same up to its float literals (the same closed form, checks, driver codes and writes),
+#: so the kernel test runs its partner's only; test_kernel_twins_differ_only_in_numbers
+#: keeps this table true (a twin that changes structure fails there).
+KERNEL_TWINS = {
+    "cycloid_khv_119.yaml": "cycloid_khv.yaml",             # other teeth
+    "khv_involute.yaml": "cycloid_khv.yaml",                # an involute K-H-V stage
+    "planetary_stepped.yaml": "planetary_2kh_sun_to_carrier.yaml",
+    "planetary_2kh_two_stages_100.yaml": "planetary_2kh_two_stages.yaml",
+    "rv40e_profile_error.yaml": "rv40e_wang2021.yaml",      # the same source, byte for byte:
+    "rv40e_tolerances.yaml": "rv40e_wang2021.yaml",         # blocks the sweep does not read
+}
 MARKED = [pytest.param(p, marks=() if p.name in QUICK else pytest.mark.slow, id=p.name)
-          for p in MODELS if p.name not in SAME_AS_LISTED]
+          for p in MODELS if p.name not in SAME_AS_LISTED | KERNEL_TWINS.keys()]
 
 
 @pytest.mark.parametrize("path", MARKED)
@@ -102,6 +115,28 @@ def test_every_model_through_the_kernels(path: Path, kernels_always) -> None:
     assert fast.kernel_compile_s > 0          # a kernel ran
     sweep_compile.KERNEL_MIN_VARIANTS = 10**18
     assert_same(kernel, compile_sweep(model, list(values))(values, quiet=True))
+
+
+def kernel_sources(path: Path) -> list[str]:
+    """The sources of the kernels test_every_model_through_the_kernels compiles for the
+    model (one per closed form it settles on), float literals replaced by ``#``; nothing
+    is compiled."""
+    model = load_model(path)
+    values = sweep_values(model)
+    compiled = compile_sweep(model, list(values))
+    kernels = sweep_compile.kernel_module()
+    lines = compiled._input_lines(kernels, (False,) * len(values))
+    return sorted(re.sub(r"\d+\.\d+(e[-+]?\d+)?", "#",
+                         kernels.kernel_source(form, len(values), *lines, cache=False))
+                  for form in compiled._closed_forms)
+
+
+@pytest.mark.slow  # two symbolic compiles
+@pytest.mark.parametrize("twin", sorted(KERNEL_TWINS))
+def test_kernel_twins_differ_only_in_numbers(twin: str) -> None:
+    twin_sources = kernel_sources(ROOT / "models" / twin)
+    assert twin_sources
+    assert twin_sources == kernel_sources(ROOT / "models" / KERNEL_TWINS[twin])
 
 
 # --- the RV: its hand-derived closed form, its back-driven variants -----------------------
@@ -290,7 +325,8 @@ def test_values_out_of_range_are_refused_as_without_kernels(bad, words,
     a value out of range still raises, with the PATH and the message of the numpy path."""
     path, index, value = bad
     values = rv_variants(400)
-    values[path] = values[path].astype(float)
+    if not float(value).is_integer():       # a whole number stays in its integer array
+        values[path] = values[path].astype(float)
     values[path][index] = value
     messages = []
     for least in (1, 10**18):
@@ -311,13 +347,16 @@ def test_a_scalar_out_of_range_is_refused(rv_sweep, kernels_always) -> None:
 
 def test_a_forked_process_runs_kernels_after_its_parent() -> None:
     """The kernels' thread pool survives fork (GNU OpenMP, numba's default without TBB,
-    aborts such a child): a sweep, then two forked workers sweeping."""
-    code = ("import multiprocessing, numpy as np\n"
+    aborts such a child): a sweep, then two forked workers sweeping. (The RV variants of
+    rv_sweep: the kernel the session compiled for them, if it did, is loaded from the
+    cache directory instead of compiled again.)"""
+    code = ("import multiprocessing\n"
             "from powergraph.analyses.sweep import compile as c, compile_sweep\n"
             "from powergraph.model import load_model\n"
+            "from powergraph.testing_trains import rv_variants\n"
             "c.KERNEL_MIN_VARIANTS = 1\n"
             f"m = load_model({str(RV)!r})\n"
-            "values = {'links.1.efficiency': np.linspace(0.9, 1.0, 500)}\n"
+            "values = rv_variants(500)\n"
             "def run(_):\n"
             "    s = compile_sweep(m, list(values))\n"
             "    r = s(values, quiet=True)\n"
