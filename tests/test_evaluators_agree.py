@@ -9,6 +9,7 @@ mesh passes η of what its driver feeds it).
 """
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -280,11 +281,22 @@ def _assert_same(efficiency, verdict, expected_efficiency, expected_verdict, who
         assert efficiency <= 1.0, who
 
 
+@functools.lru_cache(maxsize=None)
+def _gear_rows(path: Path, eta) -> dict:
+    """The gear table's rows by mode: one table holds every mode forward and coasting, so
+    it is made once (per process) for all the cases of a model, which only read it."""
+    from powergraph.analyses.gear_table import gear_table
+
+    model = load_model(path)
+    if eta is not None:
+        model = model.with_mesh_efficiency(eta)
+    return {r.mode: r for r in gear_table(model).rows}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("path, eta, mode, backdrive", list(_mode_cases()))
 def test_every_mode_every_evaluator(path: Path, eta, mode: str, backdrive: bool) -> None:
     from powergraph.analyses.formula import derive_formulas
-    from powergraph.analyses.gear_table import gear_table
     from powergraph.statics.case import TrainCase
 
     model = load_model(path)
@@ -292,14 +304,14 @@ def test_every_mode_every_evaluator(path: Path, eta, mode: str, backdrive: bool)
         model = model.with_mesh_efficiency(eta)
     point = TrainCase.of(model, mode, backdrive).point()
     if point.result is None:       # e.g. first gear coasting through its freewheel
-        row = {r.mode: r for r in gear_table(model).rows}[mode]
+        row = _gear_rows(path, eta)[mode]
         assert (row.coast_verdict if backdrive else row.verdict) == point.verdict
         return
     assert_conservation(point.result)
     expected = (point.result.efficiency, point.verdict)
     assert point.result.efficiency is None or point.result.efficiency <= 1.0
 
-    row = {r.mode: r for r in gear_table(model).rows}[mode]
+    row = _gear_rows(path, eta)[mode]
     _assert_same(row.coast_efficiency if backdrive else row.efficiency,
                  row.coast_verdict if backdrive else row.verdict, *expected, "gear table")
 
