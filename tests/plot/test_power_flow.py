@@ -170,8 +170,7 @@ def _check_no_overlap(ax) -> None:
 EVERY_CARRIER = {"rv40e", "cycloid_khv", "wolfrom_3k", "planetary_2kh_two_stages",
                  "planetary_double_planet", "planetary_stepped", "ravigneaux_4speed",
                  "simpson_3speed", "lepelletier_6speed", "zf8hp_8speed", "closed_differential",
-                 "bevel_differential", "ths2_power_split", "oil_bath_reducer", "volt_gen1",
-                 "honda_immd"}
+                 "bevel_differential", "ths2_power_split", "oil_bath_reducer", "volt_gen1"}
 FRAME_CASES = [pytest.param(path, False, id=f"{path.stem}-ground") for path in MODEL_FILES] + [
     pytest.param(path, True, id=f"{path.stem}-every-carrier", marks=pytest.mark.slow)
     for path in MODEL_FILES if path.stem in EVERY_CARRIER]
