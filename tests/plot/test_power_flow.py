@@ -125,10 +125,10 @@ def check_drawing(result, frame, ax) -> None:
 def _check_ends(ax, flow, arrow, head) -> None:
     """The line leaves the source's symbol; the head's tip touches the target's."""
     nodes = ax.powergraph_nodes
-    target = f"loss@{flow.source}" if flow.target == "loss" else flow.target
+    target = f"loss@{flow.source}" if flow.target == "loss" else flow.target_node
     start = arrow.get_path().vertices[0]
     tip = head.get_xy()[0]
-    assert _near(nodes[flow.source][0], start), (flow, start)
+    assert _near(nodes[flow.source_node][0], start), (flow, start)
     assert _near(nodes[target][0], tip), (flow, tip)
 
 
