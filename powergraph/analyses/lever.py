@@ -26,6 +26,7 @@ from collections import defaultdict
 from dataclasses import field
 from typing import Any, Mapping
 
+from powergraph.errors import MethodNotApplicableError
 from powergraph.format import format_number
 from powergraph.kinematics.elements import willis_ratio
 from powergraph.model.spec import Model
@@ -135,11 +136,19 @@ def lever_diagram(model: Model, speeds: Mapping[str, float] | None = None,
         ``{component: rad/s}`` of the motion to show (a result's ``speeds``).
     mode : str, optional
         The mode's name, for titles.
+
+    Raises
+    ------
+    MethodNotApplicableError
+        A train without a planetary set (every mesh on fixed axes): it has no lever.
     """
     by_carrier: dict[str, list] = defaultdict(list)
     for link in model.meshes:
         if link.carrier != model.frame:
             by_carrier[link.carrier].append(link)
+    if not by_carrier:
+        raise MethodNotApplicableError("no planetary set (every mesh turns on fixed axes): "
+                                       "a lever diagram draws the planetary sets' levers")
     acting = _elements_on(model)
     levers = []
     for carrier, meshes in by_carrier.items():

@@ -53,3 +53,16 @@ def test_stepped_planets_are_one_planet_not_a_node() -> None:
     wolfrom = lever_diagram(load_model(MODELS / "wolfrom_3k.yaml")).levers[0]
     assert {n.component: n.position for n in wolfrom.nodes} == pytest.approx(
         {"s": 1.0, "c": 0.0, "r1": -12 / 72, "r2": -(12 / 30) * (27 / 69)}, rel=1e-12)
+
+
+def test_a_train_without_a_planetary_set_has_no_lever(capsys) -> None:
+    """The i-MMD's gears all turn on fixed axes: no lever, one line and exit 2."""
+    from powergraph.cli.main import main
+    from powergraph.errors import MethodNotApplicableError
+
+    path = Path(__file__).resolve().parents[2] / "models" / "honda_immd.yaml"
+    with pytest.raises(MethodNotApplicableError, match="no planetary set"):
+        lever_diagram(load_model(path))
+    assert main(["lever", str(path), "--mode", "EV drive", "-o", "unused.png"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("powergraph: error: no planetary set") and len(err.splitlines()) == 1
