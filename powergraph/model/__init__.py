@@ -18,7 +18,9 @@ def load_model(path: str | Path) -> Model:
     Parameters
     ----------
     path : str or Path
-        A YAML model file (format: docs/format.md).
+        A YAML model file (format: docs/format.md), or a REXS file (``.rexs`` XML,
+        ``.rexsj`` JSON) read by :func:`powergraph.model.rexs_reader.read_rexs`
+        (docs/exchange.md).
 
     Returns
     -------
@@ -35,6 +37,10 @@ def load_model(path: str | Path) -> Model:
     >>> model.name                                   # doctest: +SKIP
     'RV-40E'
     """
+    from powergraph.model.rexs_reader import is_rexs_path, read_rexs
+
+    if is_rexs_path(path):
+        return model_from_dict(read_rexs(path).data, source=str(path))
     return model_from_dict(load_yaml_file(path), source=str(path))
 
 
