@@ -378,15 +378,27 @@ class _Reader:
         ports, rows = [], []
         for case in range(len(self.doc.load_cases)):
             rows.append(self._row(case, order, driven, defined))
+        roles = {shaft: self._role(load) for load, shaft in loads.items()}
         for shaft in order:
-            port = {"component": shaft, "role": "input" if shaft in driven or
-                    shaft == first_input else "output"}
+            port = {"component": shaft, "role": roles.get(shaft) or (
+                "input" if shaft in driven or shaft == first_input else "output")}
             if rows and f"{shaft}.speed [rpm]" in rows[0]:
                 port["speed"] = f"{rows[0][f'{shaft}.speed [rpm]']!r} rpm"
             if rows and f"{shaft}.torque [N*m]" in rows[0]:
                 port["torque"] = f"{rows[0][f'{shaft}.torque [N*m]']!r} N*m"
             ports.append(port)
         return ports, tuple(rows)
+
+    def _role(self, load: int) -> str | None:
+        """The role powergraph wrote on a load (``custom_powergraph_role``), or None."""
+        raw = self.doc.components[load].attributes.get("custom_powergraph_role")
+        if raw is None:
+            return None
+        self.used.add((load, "custom_powergraph_role"))
+        if raw[0] not in ("input", "output", "machine"):
+            raise self.error(f"component {load} custom_powergraph_role: {raw[0]!r} is not "
+                             "input or output")
+        return raw[0]
 
     def _row(self, case: int, order: list, driven: list, defined: dict) -> dict:
         fractions = [f for c in self.doc.load_cases[case] for attribute in _FRACTIONS
