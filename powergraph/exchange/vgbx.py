@@ -7,7 +7,7 @@ gear first, then one entry per gear with its ``Ratio`` (input over output speed)
 
 - a train with modes gives one gear per forward mode (ratio > 0 in the gear table,
   :func:`powergraph.analyses.gear_table.gear_table`), in the order of its modes table;
-  a train without modes one gear, its ratio;
+  a train without modes one gear, the size of its ratio (an external pair's −2 is 2);
 - the **axle gear** is the mesh link named ``axle`` or ``final drive`` (its ``name``,
   any case), a fixed-axis pair with one gear on the output's rigid body: its ratio is
   its tooth ratio, its loss map that pair's alone, and the gears' maps are those of the
@@ -100,9 +100,9 @@ def _name(stem: str, part: str) -> str:
 def _forward_modes(model: Model) -> list[tuple[str | None, float]]:
     if not model.modes:
         result = TrainCase.of(model).point().required().result
-        if result.ratio is None or result.ratio <= 0:
-            raise UsageError(f"the train's ratio {result.ratio} is not a forward gear ratio")
-        return [(None, float(result.ratio))]
+        if not result.ratio:
+            raise UsageError("the train has no ratio (its output stands still or is free)")
+        return [(None, abs(float(result.ratio)))]   # VECTO's ratio: a speed ratio, unsigned
     rows = [(row.mode, row.ratio) for row in gear_table(model).rows
             if row.ratio is not None and row.ratio > 0]
     if not rows:
