@@ -1,7 +1,8 @@
-"""``powergraph export MODEL --to rexs|vgbx -o FILE [--mode M] [--speed C:D:N]
-[--torque A:B:N]``: the train as a REXS gear unit (``.rexs`` XML, ``.rexsj`` JSON) or as
-a VECTO gearbox file (``.vgbx``, its ``.vtlm`` loss maps written beside it); see
-docs/exchange.md. What the target format cannot hold is listed in one summary."""
+"""``powergraph export MODEL --to rexs|vgbx|fmu -o FILE [--mode M] [--speed C:D:N]
+[--torque A:B:N]``: the train as a REXS gear unit (``.rexs`` XML, ``.rexsj`` JSON), as
+a VECTO gearbox file (``.vgbx``, its ``.vtlm`` loss maps written beside it) or as an FMI
+2.0 co-simulation FMU (``.fmu``, with the optional extra ``fmu``); see docs/exchange.md.
+What the target format cannot hold is listed in one summary."""
 from __future__ import annotations
 
 import argparse
@@ -13,21 +14,25 @@ from powergraph.cli.common import check_output_file, load, say_wrote, write_text
 from powergraph.errors import UsageError
 
 #: The suffixes each target takes.
-SUFFIXES = {"rexs": (".rexs", ".rexsj"), "vgbx": (".vgbx",)}
+SUFFIXES = {"rexs": (".rexs", ".rexsj"), "vgbx": (".vgbx",), "fmu": (".fmu",)}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser(
-        "export", help="write a train as REXS (.rexs, .rexsj) or a VECTO gearbox (.vgbx)",
+        "export", help="write a train as REXS (.rexs, .rexsj), a VECTO gearbox (.vgbx) or "
+                       "an FMU (.fmu)",
         description="Write the train as a REXS gear unit (geometry, stages, planetary "
                     "stages, bearings, lubricant, the operating point as a load case) or "
-                    "as a VECTO gearbox file with one loss map per forward gear "
+                    "as a VECTO gearbox file with one loss map per forward gear, or as an "
+                    "FMI 2.0 co-simulation FMU (needs pythonfmu: pip install -e "
+                    "'.[fmu]'; the machine running it needs Python with powergraph) "
                     "(docs/exchange.md).")
     parser.add_argument("model", help="model file (YAML or REXS)")
     parser.add_argument("--to", required=True, choices=sorted(SUFFIXES),
                         help="the format to write")
     parser.add_argument("-o", "--output", required=True, metavar="FILE",
-                        help="file to write (.rexs/.rexsj for rexs, .vgbx for vgbx)")
+                        help="file to write (.rexs/.rexsj for rexs, .vgbx for vgbx, .fmu "
+                             "for fmu)")
     parser.add_argument("--mode", default=None,
                         help="rexs: the mode to write, for a train with shift elements")
     parser.add_argument("--speed", default=None, metavar="C:D:N",
@@ -52,6 +57,14 @@ def run(args: argparse.Namespace) -> int:
         return _vgbx(load(args.model), target, speeds, torques)
     if args.speed is not None or args.torque is not None:
         raise UsageError("--speed and --torque are for --to vgbx")
+    if args.to == "fmu":
+        if args.mode is not None:
+            raise UsageError("--mode: an FMU runs the model as loaded; leave --mode out")
+        from powergraph.exchange.fmu import build_fmu
+
+        build_fmu(args.model, target)
+        say_wrote(target, "(FMI 2.0 co-simulation; runs where Python has powergraph)")
+        return 0
     return _rexs(load(args.model), target, args.mode)
 
 
