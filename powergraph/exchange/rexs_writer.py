@@ -130,14 +130,19 @@ class _Writer:
                         ("stage_gear_data", data))
         geometry = link.blocks.get("geometry")
         if geometry is not None:
-            self._geometry(link, geometry)
+            self._geometry(link, geometry, stage)
         return stage, link
 
-    def _geometry(self, link, geometry) -> None:
+    def _geometry(self, link, geometry, stage: int) -> None:
         a, b = link.between
         pinion_first = not self.model.components[a].internal
-        shifts = ((geometry.shift_1, geometry.shift_2) if pinion_first
-                  else (geometry.shift_2, geometry.shift_1))
+        if hasattr(geometry, "centre_distance"):   # the operating centre distance, no shifts
+            self.components[stage].attributes["center_distance"] = (
+                geometry.centre_distance, "mm")
+            shifts = (None, None)
+        else:
+            shifts = ((geometry.shift_1, geometry.shift_2) if pinion_first
+                      else (geometry.shift_2, geometry.shift_1))
         internal = self.model.components[a].internal or self.model.components[b].internal
         helix = (geometry.helix_angle_deg,
                  geometry.helix_angle_deg if internal else -geometry.helix_angle_deg)

@@ -71,3 +71,18 @@ def test_what_rexs_cannot_hold_is_listed() -> None:
 def test_shift_elements_need_a_mode() -> None:
     with pytest.raises(ModelError, match="name the mode"):
         rexs_export(pg.load_model(MODELS / "simpson_3speed.yaml"))
+
+
+def test_an_imported_unit_keeps_its_geometry_through_export(tmp_path: Path) -> None:
+    # the hand-written two-stage unit: stage 1 with shifts, stage 2 with a centre distance
+    from powergraph.model.rexs_reader import read_rexs
+
+    data = Path(__file__).resolve().parent / "data" / "two_stage_helical.rexs"
+    model = pg.model_from_dict(read_rexs(data, mesh_efficiency=0.98).data)
+    back, _ = _read_back(model, None, tmp_path, ".rexs")
+    assert [link.blocks["geometry"] for link in back.meshes] == [
+        link.blocks["geometry"] for link in model.meshes]
+    before, after = pg.solve(model), pg.solve(back)
+    assert_conservation(after)
+    assert [m.loss for m in after.meshes] == pytest.approx([m.loss for m in before.meshes],
+                                                           rel=1e-9)
