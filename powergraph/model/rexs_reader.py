@@ -159,7 +159,8 @@ class _Reader:
         links: list[dict] = []
         stages = self._planetary_stages()
         self._gears(components, links, stages)
-        links += [self._mesh(r, stages) for r in self.relations("stage")]
+        links += [self._mesh(r, stages) for r in self.relations("stage")
+                  if self._cylindrical(r)]
         links += self._bearings(components) + self._couplings(components)
         for stage in stages.values():
             links += [{"type": "fixed", "between": [pin, stage["carrier"]]}
@@ -230,6 +231,15 @@ class _Reader:
                 entry["count"] = components[shaft]["count"] = planet_count[shaft]
             components[gear] = entry
             links.append({"type": "fixed", "between": [gear, shaft]})
+
+    def _cylindrical(self, relation) -> bool:
+        """A stage between two cylindrical gears; another (bevel, worm) is not mapped."""
+        gears = [relation.role(r) for r in ("gear_1", "gear_2")]
+        if all(g is not None and self.doc.components[g].type == "cylindrical_gear"
+               for g in gears):
+            return True
+        self.used_relations.discard(relation.id)
+        return False
 
     def _mesh(self, relation, stages: dict) -> dict:
         stage, g1, g2 = (relation.role(r) for r in ("stage", "gear_1", "gear_2"))
