@@ -18,8 +18,9 @@ Examples
 --------
 >>> from powergraph.model import load_model
 >>> export = rexs_export(load_model("models/planetary_2kh_two_stages.yaml"))
->>> sorted({c.type for c in export.document.components.values()})[:3]
-['concept_bearing', 'cylindrical_gear', 'cylindrical_gear_flank']
+>>> kinds = [c.type for c in export.document.components.values()]
+>>> kinds.count("planetary_stage"), kinds.count("cylindrical_stage")
+(2, 4)
 """
 from __future__ import annotations
 

@@ -21,9 +21,9 @@ gear first, then one entry per gear with its ``Ratio`` (input over output speed)
 Examples
 --------
 >>> from powergraph.model import load_model
->>> gearbox = vgbx_export(load_model("models/simpson_3speed.yaml"), "simpson")
->>> [round(g["Ratio"], 6) for g in gearbox.document["Body"]["Gears"]]
-[1.0, 2.333333, 1.333333, 1.0]
+>>> gearbox = vgbx_export(load_model("models/planetary_2kh_two_stages.yaml"), "p")
+>>> [(round(g["Ratio"], 6), g["LossMap"]) for g in gearbox.document["Body"]["Gears"]]
+[(1.0, 'p_axle.vtlm'), (20.0, 'p_gear.vtlm')]
 """
 from __future__ import annotations
 
