@@ -37,7 +37,8 @@ def _table(text: str) -> np.ndarray:
 
 def test_gear_ratios_are_the_gear_tables() -> None:
     model = pg.load_model(MODELS / "simpson_3speed.yaml")
-    export = vgbx_export(model, "simpson")
+    export = vgbx_export(model, "simpson", np.array([1000.0, 2000.0]),
+                         np.array([-50.0, 0.0, 50.0, 100.0]))
     gears = export.document["Body"]["Gears"]
     forward = [row.ratio for row in gear_table(model).rows if row.ratio and row.ratio > 0]
     assert [g["Ratio"] for g in gears[1:]] == pytest.approx(forward, rel=1e-12)
@@ -46,6 +47,16 @@ def test_gear_ratios_are_the_gear_tables() -> None:
     for gear in gears:
         table = _table(export.maps[gear["LossMap"]])
         assert np.all(table[:, 2] >= 0.0)        # losses are positive
+
+
+@pytest.mark.slow
+def test_the_default_grid_covers_every_forward_gear() -> None:
+    # 8 speeds × 9 input torques per gear, coasting points left out where a freewheel
+    # overruns (first gear): every map keeps its driving side
+    export = vgbx_export(pg.load_model(MODELS / "simpson_3speed.yaml"), "simpson")
+    for gear in export.document["Body"]["Gears"][1:]:
+        table = _table(export.maps[gear["LossMap"]])
+        assert np.count_nonzero(table[:, 1] > 0) == 8 * 4
 
 
 def test_a_train_without_modes_is_one_gear_with_both_quadrants() -> None:
