@@ -241,7 +241,9 @@ class _Writer:
             given_load = port.power is not None or port.torque is not None
             load = self.add("external_load", port.name or f"port {port.index}",
                             transmits_torque=(True, "none"), defines_torque=(given_load, "none"),
-                            custom_powergraph_role=(port.role, "none"))
+                            custom_powergraph_role=(
+                                port.role if port.role in ("input", "output") else None,
+                                "none"))
             self.relate("assembly", ("assembly", shaft), ("part", load))
             if port.speed is not None:
                 self.components[shaft].attributes["defines_speed"] = (True, "none")

@@ -405,7 +405,7 @@ class _Reader:
         if raw is None:
             return None
         self.used.add((load, "custom_powergraph_role"))
-        if raw[0] not in ("input", "output", "machine"):
+        if raw[0] not in ("input", "output"):
             raise self.error(f"component {load} custom_powergraph_role: {raw[0]!r} is not "
                              "input or output")
         return raw[0]
