@@ -29,27 +29,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from powergraph.errors import ModelError
 from powergraph.model.rexs_document import RexsDocument, parse_rexs
+from powergraph.model.rexs_values import AttributeReader
 from powergraph.model.yaml_loader import read_model_bytes
 
 #: File suffixes read as REXS wherever a model path is taken.
 REXS_SUFFIXES = (".rexs", ".rexsj")
 #: How long the load spectrum lasts in the duty-cycle points: fractions of one hour.
 SPECTRUM_SECONDS = 3600.0
-#: Units of the attributes read, without spaces: unit -> factor to the model's unit
-#: (mm, degrees, rpm, N·m, fraction, cSt, kg/m³).
-_UNITS = {
-    "length": {"mm": 1.0, "m": 1000.0, "mum": 1e-3, "um": 1e-3},
-    "angle": {"deg": 1.0, "rad": 180.0 / math.pi},
-    "speed": {"1/min": 1.0, "rpm": 1.0, "rad/s": 30.0 / math.pi},
-    "torque": {"Nm": 1.0, "N*m": 1.0, "Nmm": 1e-3, "kNm": 1e3},
-    "fraction": {"%": 0.01, "": 1.0, "none": 1.0, "-": 1.0},
-    "number": {"": 1.0, "none": 1.0, "-": 1.0},
-    "viscosity": {"mm^2/s": 1.0, "cSt": 1.0, "m^2/s": 1e6},
-    "density": {"kg/dm^3": 1000.0, "kg/m^3": 1.0, "g/cm^3": 1000.0},
-    "temperature": {"C": 1.0, "degC": 1.0},
-}
 _BEARING_ROLES = ("inner_part", "outer_part")
 _FRACTIONS = ("load_duration_fraction", "custom_load_duration_fraction")
 
@@ -86,63 +73,10 @@ def rexs_import(document: RexsDocument, mesh_efficiency: float | None = None,
     return _Reader(document).build(mesh_efficiency, name)
 
 
-class _Reader:
+class _Reader(AttributeReader):
     """Reads a document once, noting every attribute and relation it uses."""
 
-    def __init__(self, document: RexsDocument) -> None:
-        self.doc, self.used, self.used_relations = document, set(), set()
-        self.case_used: set[tuple[int, int, str]] = set()
-        by_type = defaultdict(list)
-        for relation in document.relations:
-            by_type[relation.type].append(relation)
-        self.by_type = by_type
-
-    def error(self, message: str) -> ModelError:
-        return ModelError(message, self.doc.source)
-
-    def of_type(self, *types: str) -> list[int]:
-        return [c.id for c in self.doc.components.values() if c.type in types]
-
-    def value(self, ident: int, attribute: str, kind: str, case: int | None = None) -> Any:
-        """An attribute as a float in the model's unit (None when absent)."""
-        source = (self.doc.components[ident].attributes if case is None
-                  else self.doc.load_cases[case].get(ident, {}))
-        if attribute not in source:
-            return None
-        (self.used.add((ident, attribute)) if case is None
-         else self.case_used.add((case, ident, attribute)))
-        raw, unit = source[attribute]
-        factors = _UNITS[kind]
-        key = unit.replace(" ", "")
-        where = f"component {ident} {attribute}" + ("" if case is None else
-                                                    f" (load case {case + 1})")
-        if key not in factors:
-            raise self.error(f"{where}: unit {unit!r} is not one of "
-                             f"{', '.join(repr(u) for u in factors)}")
-        try:
-            number = float(raw)
-        except (TypeError, ValueError):
-            raise self.error(f"{where}: {raw!r} is not a number") from None
-        if not math.isfinite(number):
-            raise self.error(f"{where}: {raw!r} is not a finite number")
-        return number * factors[key]
-
-    def flag(self, ident: int, attribute: str, default: bool) -> bool:
-        attributes = self.doc.components[ident].attributes
-        if attribute not in attributes:
-            return default
-        self.used.add((ident, attribute))
-        raw = attributes[attribute][0]
-        if isinstance(raw, bool) or str(raw).lower() in ("true", "false"):
-            return raw if isinstance(raw, bool) else str(raw).lower() == "true"
-        raise self.error(f"component {ident} {attribute}: {raw!r} is not true or false")
-
-    def relations(self, kind: str) -> list:
-        found = self.by_type.get(kind, [])
-        self.used_relations.update(r.id for r in found)
-        return found
-
-    def build(self, mesh_efficiency: float | None, name: str) -> dict:
+    def build(self, mesh_efficiency: float | None, name: str) -> RexsImport:
         doc = self.doc
         casings = self.of_type("gear_casing")
         if len(casings) > 1:
