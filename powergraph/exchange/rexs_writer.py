@@ -38,6 +38,8 @@ from powergraph.statics.case import TrainCase
 #: The REXS version written.
 REXS_VERSION = "1.4"
 _RPM = 30.0 / math.pi
+#: Every shaft's axis, the gear unit's: speeds and torques are about one common axis.
+_AXIS = [1.0, 0.0, 0.0]
 
 
 @dataclass(frozen=True)
@@ -79,14 +81,15 @@ class _Writer:
 
     def build(self, original: Model) -> RexsExport:
         model = self.model
-        self.unit = self.add("gear_unit", model.name)
+        self.unit = self.add("gear_unit", model.name, u_axis_vector=(_AXIS, "mm"))
         self.shaft = {}
         for body in model.bodies:
             names = [model.components[c].name or str(model.components[c].raw_id)
                      for c in body.members]
             kind = "gear_casing" if body.is_frame else "shaft"
             self.shaft[body.id] = self.add(kind, " / ".join(names), **(
-                {} if body.is_frame else {"defines_speed": (False, "none")}))
+                {} if body.is_frame else {"defines_speed": (False, "none"),
+                                          "u_axis_vector": (_AXIS, "mm")}))
             self.relate("assembly", ("assembly", self.unit), ("part", self.shaft[body.id]))
         self.gear = {}
         for ident, component in model.components.items():

@@ -212,11 +212,11 @@ class _Reader(AttributeReader):
         helix = [self.value(g, "helix_angle_reference_diameter", "angle") for g in (g1, g2)]
         if helix[0] is not None:
             geometry["helix_angle"] = helix[0]
-        angle = [a for g in (g1, g2) for a in self._flank_values(g, "normal_pressure_angle",
+        angle = [a for g in (g1, g2) for a in self.flank_values(g, "normal_pressure_angle",
                                                                  "angle")]
         if angle:
             geometry["pressure_angle"] = angle[0]
-        shifts = [self._shift(g) for g in (g1, g2)]
+        shifts = [self.shift(g) for g in (g1, g2)]
         internal_first = (self.value(g1, "number_of_teeth", "number") or 0) < 0
         distance = self.value(stage, "center_distance", "length")
         if any(s is not None for s in shifts):
@@ -227,24 +227,6 @@ class _Reader(AttributeReader):
         elif distance is not None:
             geometry["centre_distance"] = distance
         return geometry
-
-    def _flank_values(self, gear: int, attribute: str, kind: str) -> list[float]:
-        own = self.value(gear, attribute, kind)
-        if own is not None:
-            return [own]
-        flanks = [ref for r in self.relations("flank") if r.role("gear") == gear
-                  for role, ref, _ in r.refs if role in ("left", "right")]
-        return [v for v in (self.value(f, attribute, kind) for f in flanks) if v is not None]
-
-    def _shift(self, gear: int) -> float | None:
-        for attribute in ("profile_shift_coefficient", "addendum_modification_coefficient"):
-            values = self._flank_values(gear, attribute, "number")
-            if values:
-                if max(values) - min(values) > 1e-12:
-                    raise self.error(f"cylindrical gear {gear}: its flanks have different "
-                                     f"{attribute} ({', '.join(f'{v:g}' for v in values)})")
-                return values[0]
-        return None
 
     def _member(self, ident: int, components: dict) -> Any:
         kind = self.doc.components[ident].type
@@ -350,16 +332,35 @@ class _Reader(AttributeReader):
         share = fractions[0] if fractions else 1.0 / len(self.doc.load_cases)
         row = {"duration [s]": share * SPECTRUM_SECONDS}
         for shaft in order:
+            sense = self._sense(shaft)
             speed = self.value(shaft, "rotational_speed", "speed", case) \
                 if shaft in driven else None
             if speed is not None:
-                row[f"{shaft}.speed [rpm]"] = speed
+                row[f"{shaft}.speed [rpm]"] = sense * speed
             torque = next((t for load, s in defined.items() if s == shaft and
                            (t := self.value(load, "torque_around_u_axis", "torque", case))
                            is not None), None)
             if torque is not None:
-                row[f"{shaft}.torque [N*m]"] = torque
+                row[f"{shaft}.torque [N*m]"] = sense * torque
         return row
+
+    def _sense(self, shaft: int) -> float:
+        """+1 when the shaft's ``u_axis_vector`` points as the gear unit's (else as the
+        first shaft's that gives one), −1 when it points the other way: REXS gives speeds
+        and torques about each shaft's own axis, the model about one common axis. An axis
+        at an angle (a bevel stage) is an error."""
+        axes = {c: self.vector(c, "u_axis_vector") for c in self.of_type("gear_unit", "shaft")}
+        reference = next((axes[c] for c in self.of_type("gear_unit") if axes[c] is not None),
+                         next((a for a in axes.values() if a is not None), None))
+        own = axes.get(shaft)
+        if own is None or reference is None:
+            return 1.0
+        cosine = sum(a * b for a, b in zip(own, reference)) / math.hypot(*own) / \
+            math.hypot(*reference)
+        if abs(abs(cosine) - 1.0) > 1e-6:
+            raise self.error(f"shaft {shaft}: its u_axis_vector is not parallel to the gear "
+                             "unit's; powergraph takes speeds about one common axis")
+        return 1.0 if cosine > 0 else -1.0
 
     def _unmapped(self) -> tuple[str, ...]:
         found = defaultdict(set)

@@ -90,3 +90,38 @@ class AttributeReader:
         found = self.by_type.get(kind, [])
         self.used_relations.update(r.id for r in found)
         return found
+
+    def flank_values(self, gear: int, attribute: str, kind: str) -> list[float]:
+        """A gear's attribute, else its flanks' (``flank`` relation: left, right)."""
+        own = self.value(gear, attribute, kind)
+        if own is not None:
+            return [own]
+        flanks = [ref for r in self.relations("flank") if r.role("gear") == gear
+                  for role, ref, _ in r.refs if role in ("left", "right")]
+        return [v for v in (self.value(f, attribute, kind) for f in flanks) if v is not None]
+
+    def shift(self, gear: int) -> float | None:
+        """A gear's profile shift coefficient (its flanks' must agree), or None."""
+        for attribute in ("profile_shift_coefficient", "addendum_modification_coefficient"):
+            values = self.flank_values(gear, attribute, "number")
+            if values:
+                if max(values) - min(values) > 1e-12:
+                    raise self.error(f"cylindrical gear {gear}: its flanks have different "
+                                     f"{attribute} ({', '.join(f'{v:g}' for v in values)})")
+                return values[0]
+        return None
+
+    def vector(self, ident: int, attribute: str) -> list[float] | None:
+        """A vector of three numbers (an axis, a position), or None when absent."""
+        raw = self.doc.components[ident].attributes.get(attribute)
+        if raw is None:
+            return None
+        self.used.add((ident, attribute))
+        try:
+            axis = [float(x) for x in raw[0]]
+        except (TypeError, ValueError):
+            axis = []
+        if len(axis) != 3 or not any(axis) or not all(map(math.isfinite, axis)):
+            raise self.error(f"component {ident} {attribute}: {raw[0]!r} is not a vector "
+                             "of three numbers")
+        return axis

@@ -64,7 +64,7 @@ def test_load_spectrum_as_points() -> None:
 def test_unmapped_attributes_are_listed() -> None:
     unmapped = read_rexs(HELICAL).unmapped
     assert "cylindrical_gear: tip_diameter" in unmapped
-    assert "shaft: u_axis_vector" in unmapped
+    assert "concept_bearing: axial_force_absorption" in unmapped
     assert "load cases, external_load: force_v_direction" in unmapped
     # what is mapped is not listed
     assert not any("number_of_teeth" in line or "rotational_speed" in line for line in unmapped)
@@ -80,6 +80,37 @@ def test_planetary_stage_from_json() -> None:
     assert all(link.carrier == "3" for link in model.meshes)       # the carrier shaft
     assert model.components["12"].count == 3                       # number_of_planets
     assert model.components["13"].internal
+
+
+def test_a_shaft_turned_the_other_way_gives_its_speed_and_torque_negated(tmp_path) -> None:
+    # REXS gives speeds and torques about each shaft's own u axis; the input shaft's axis
+    # reversed against the gear unit's means -1480 rpm and -200 N·m about the common one:
+    # the same power and the same ratio
+    text = HELICAL.read_text(encoding="utf-8").replace(
+        '<attribute id="u_axis_vector" unit="mm"><array><c>1</c>',
+        '<attribute id="u_axis_vector" unit="mm"><array><c>-1</c>').replace(
+        '<attribute id="reference_temperature" unit="C">20</attribute>',
+        '<attribute id="u_axis_vector" unit="mm"><array><c>2</c><c>0</c><c>0</c></array>'
+        '</attribute>')
+    path = tmp_path / "reversed.rexs"
+    path.write_text(text, encoding="utf-8")
+    ports = read_rexs(path).data["ports"]
+    assert ports[0]["speed"] == "-1480.0 rpm" and ports[0]["torque"] == "-200.0 N*m"
+    result = pg.solve(pg.load_model(path))
+    assert_conservation(result)
+    assert result.ratio == pytest.approx((58 / 17) * (67 / 19), rel=1e-12)
+    assert result.input_power == pytest.approx(200.0 * 1480 * math.pi / 30, rel=1e-12)
+
+
+def test_an_axis_at_an_angle_is_an_error(tmp_path: Path) -> None:
+    text = HELICAL.read_text(encoding="utf-8").replace(
+        '<attribute id="reference_temperature" unit="C">20</attribute>',
+        '<attribute id="u_axis_vector" unit="mm"><array><c>0</c><c>1</c><c>0</c></array>'
+        '</attribute>')
+    path = tmp_path / "bevel.rexs"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(ModelError, match="shaft 10: its u_axis_vector is not parallel"):
+        read_rexs(path)
 
 
 def test_load_model_reads_rexs_by_suffix(tmp_path: Path) -> None:
