@@ -13,6 +13,8 @@ Layers, earliest first (docs/architecture.md)::
                   powergraph.testing_trains (random valid trains for tests and benchmarks)
     4 methods     powergraph.methods.*          } the same rank: they may use each other,
     4 analyses    powergraph.analyses.*         } but only without cycles
+    4 exchange    powergraph.exchange.*         (REXS and VECTO writers; the REXS reader is
+                                                 the model layer's)
     5 plot        powergraph.plot.*             (including the pure layout, plot.layout)
     6 cli         powergraph.cli.*, powergraph.__main__ (``python -m powergraph``)
 
@@ -45,7 +47,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "powergraph"
 
 LAYERS = (("powergraph.cli", 6), ("powergraph.__main__", 6), ("powergraph.plot", 5), ("powergraph.methods", 4),
-          ("powergraph.analyses", 4), ("powergraph.testing", 3),
+          ("powergraph.analyses", 4), ("powergraph.exchange", 4), ("powergraph.testing", 3),
           ("powergraph.testing_trains", 3), ("powergraph.statics", 3),
           ("powergraph.kinematics", 2), ("powergraph.model", 1), ("powergraph.errors", 0), ("powergraph.records", 0),
           ("powergraph.result", 0), ("powergraph.format", 0), ("powergraph.display", 0), ("powergraph.gears", 0), ("powergraph", 0))

@@ -95,3 +95,16 @@ def _by_torque(points, speeds: int, most: int = 12) -> str:
     more = len(columns) - most
     return ", ".join(named) + (f" and {more} more torque(s)" if more > 0 else "")
 
+
+#: The loss map's columns, as VECTO's transmission loss maps (.vtlm) name them.
+LOSS_MAP_HEADER = "Input Speed [rpm],Input Torque [Nm],Torque Loss [Nm]"
+
+
+def loss_map_text(result: "EfficiencyMap") -> str:
+    """The map's points (:meth:`EfficiencyMap.loss_map`) as the text of a VECTO
+    transmission loss map (``.vtlm``): the header, then one line per point."""
+    rows = result.loss_map()
+    lines = [LOSS_MAP_HEADER] + [f"{n:.10g},{t:.10g},{loss:.10g}" for n, t, loss in
+                                 zip(rows["speed_rpm"], rows["input_torque"],
+                                     rows["torque_loss"])]
+    return "\n".join(lines) + "\n"

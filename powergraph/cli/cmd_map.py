@@ -26,8 +26,6 @@ TORQUE_LIMIT = MAX_TORQUE
 SPEED_LIMIT = MAX_SPEED * 60 / (2 * math.pi)
 #: Most points along one axis.
 MAX_POINTS = 500
-#: The loss map's columns, as VECTO's transmission loss maps (.vtlm) name them.
-LOSS_MAP_HEADER = "Input Speed [rpm],Input Torque [Nm],Torque Loss [Nm]"
 
 
 def span_option(text: str, option: str, limit: float) -> np.ndarray:
@@ -125,14 +123,15 @@ def run(args: argparse.Namespace) -> int:
 def write_loss_map(path, result, data_on_stdout: bool = False) -> None:
     """The map's points as a loss map file (:meth:`EfficiencyMap.loss_map`); the user is
     told how many points each side has, and how many were left out (no answer)."""
+    from powergraph.analyses.efficiency_map_report import loss_map_text
+
     rows = result.loss_map()
-    lines = [LOSS_MAP_HEADER] + [f"{n:.10g},{t:.10g},{loss:.10g}" for n, t, loss in
-                                 zip(rows["speed_rpm"], rows["input_torque"],
-                                     rows["torque_loss"])]
+    text = loss_map_text(result)
+    lines = text.splitlines()
 
     def write(tmp: str) -> None:
         with open(tmp, "w", encoding="utf-8", newline="\n") as handle:
-            handle.write("\n".join(lines) + "\n")
+            handle.write(text)
 
     write_atomically(path, write)
     left_out = result.efficiency.size - len(rows["speed_rpm"])

@@ -59,8 +59,7 @@ def run(args: argparse.Namespace) -> int:
     from powergraph.analyses.gear_table import gear_table
     from powergraph.analyses.shift_placement import (place_shift_elements,
                                                      transmission_document)
-    from powergraph.model import model_from_dict
-    from powergraph.model.yaml_loader import load_yaml_file
+    from powergraph.model import load_model_data, model_from_dict
 
     target = check_output_file(args.output, "-o", (".yaml", ".yml")) if args.output else None
     ratios = parse_ratios(args.ratios)
@@ -68,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     top = whole_option(args.top, "--top", 1, 100)
     model = load(args.model)
     placement = place_shift_elements(model, ratios, tolerance, top)
-    document = transmission_document(load_yaml_file(args.model), model, placement.plans[0])
+    document = transmission_document(load_model_data(args.model), model, placement.plans[0])
     table = gear_table(model_from_dict(document, source=str(target or args.model)))
     if args.json:
         print_json({**placement.to_dict(), "gear_table": table.to_dict()})

@@ -303,6 +303,15 @@ def write_atomically(path: str | Path, write: Callable[[str], None]) -> None:
         raise
 
 
+def write_text_atomically(path: str | Path, text: str) -> None:
+    """Write ``text`` (UTF-8, ``\\n`` line ends) to ``path`` by :func:`write_atomically`."""
+    def write(tmp: str) -> None:
+        with open(tmp, "w", encoding="utf-8", newline="\n") as handle:
+            handle.write(text)
+
+    write_atomically(path, write)
+
+
 def _remove(path: str) -> None:
     if os.path.exists(path):
         os.unlink(path)

@@ -17,7 +17,7 @@ from powergraph.errors import ModelError, PowerGraphError, UsageError
 #: Command modules, in the order ``--help`` lists them. Each has register() and run().
 COMMANDS = ("solve", "check", "draw", "compare", "backlash", "cycloid", "volume", "sweep",
             "formula", "schema", "tolerance", "mesh", "map", "enumerate", "synthesize",
-            "modes", "lever", "shifts", "cycle")
+            "modes", "lever", "shifts", "cycle", "import", "export")
 _SIZE_SUFFIXES = {"": 1, "k": 10**3, "m": 10**6, "g": 10**9}
 #: Largest --max-model-size: a file of a petabyte is no model.
 _SIZE_LIMIT = 10**15

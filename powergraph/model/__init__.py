@@ -2,14 +2,15 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from powergraph.model.graph import to_networkx
 from powergraph.model.spec import Body, Component, Link, Model, Port
 from powergraph.model.validate import model_from_dict
 from powergraph.model.yaml_loader import load_yaml_file, load_yaml_text
 
-__all__ = ["Body", "Component", "Link", "Model", "Port", "load_model", "loads_model",
-           "model_from_dict", "to_networkx"]
+__all__ = ["Body", "Component", "Link", "Model", "Port", "load_model", "load_model_data",
+           "loads_model", "model_from_dict", "to_networkx"]
 
 
 def load_model(path: str | Path) -> Model:
@@ -18,7 +19,9 @@ def load_model(path: str | Path) -> Model:
     Parameters
     ----------
     path : str or Path
-        A YAML model file (format: docs/format.md).
+        A YAML model file (format: docs/format.md), or a REXS file (``.rexs`` XML,
+        ``.rexsj`` JSON) read by :func:`powergraph.model.rexs_reader.read_rexs`
+        (docs/exchange.md).
 
     Returns
     -------
@@ -35,7 +38,17 @@ def load_model(path: str | Path) -> Model:
     >>> model.name                                   # doctest: +SKIP
     'RV-40E'
     """
-    return model_from_dict(load_yaml_file(path), source=str(path))
+    return model_from_dict(load_model_data(path), source=str(path))
+
+
+def load_model_data(path: str | Path) -> Any:
+    """The plain data of a model file (as YAML gives it), before validation: a REXS file
+    (``.rexs``, ``.rexsj``) through :func:`powergraph.model.rexs_reader.read_rexs`."""
+    from powergraph.model.rexs_reader import is_rexs_path, read_rexs
+
+    if is_rexs_path(path):
+        return read_rexs(path).data
+    return load_yaml_file(path)
 
 
 def loads_model(text: str, source: str = "<model>") -> Model:

@@ -47,8 +47,12 @@ WRITERS = [
     (["cycle", "{missing}", "--points", "p.csv"], "-o", "file"),
     (["cycle", "{missing}", "--points", "p.csv"], "--plot", "figure"),
     (["shifts", "{missing}", "--ratios", "2"], "-o", "model"),
+    (["import", "{missing}"], "-o", "model"),
+    (["import", "{missing}", "-o", "imported.yaml"], "--points", "file"),
+    (["export", "{missing}", "--to", "rexs"], "-o", "rexs"),
 ]
-NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out", "model": "x.yaml"}
+NAMES = {"figure": "x.png", "file": "x.csv", "folder": "out", "model": "x.yaml",
+         "rexs": "x.rexs"}
 
 
 def run(*argv: str) -> tuple[int, str, str]:
