@@ -1,7 +1,6 @@
 """An FMU built by ``powergraph export --to fmu`` (powergraph.exchange.fmu), simulated
-with fmpy: its outputs equal the single solve at the same inputs to 1e-9. Needs the
-``fmu`` extra (pythonfmu, fmpy): skipped without it; marked slow (building and loading
-an FMU takes seconds)."""
+with fmpy: its outputs equal the single solve at the same inputs to 1e-9. pythonfmu and
+fmpy are test dependencies (and the ``fmu`` extra); a bare install skips this test."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -17,7 +16,6 @@ fmpy = pytest.importorskip("fmpy")
 MODEL = Path(__file__).resolve().parents[2] / "models" / "planetary_2kh_two_stages.yaml"
 
 
-@pytest.mark.slow
 def test_fmu_outputs_equal_the_solve(tmp_path: Path) -> None:
     from powergraph.exchange.fmu import build_fmu
 
