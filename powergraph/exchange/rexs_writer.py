@@ -25,13 +25,13 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from itertools import count
 from typing import Any
 
 from powergraph.errors import ModelError
 from powergraph.model.rexs_document import RexsComponent, RexsDocument, RexsRelation
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics import solve
 from powergraph.statics.case import TrainCase
 
@@ -42,7 +42,7 @@ _RPM = 30.0 / math.pi
 _AXIS = [1.0, 0.0, 0.0]
 
 
-@dataclass(frozen=True)
+@record
 class RexsExport:
     """A train as a REXS ``document`` and the ``unmapped`` features (one line each)."""
 

@@ -27,7 +27,6 @@ Examples
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from datetime import datetime, timezone
 from typing import Any
 
@@ -40,6 +39,7 @@ from powergraph.analyses.gear_table import gear_table
 from powergraph.errors import UsageError
 from powergraph.model import model_from_dict
 from powergraph.model.spec import Model
+from powergraph.records import record
 from powergraph.statics.case import TrainCase
 from powergraph.units_si import RAD_S_PER_RPM
 
@@ -49,7 +49,7 @@ FILE_VERSION = 6
 AXLE_NAMES = ("axle", "final drive")
 
 
-@dataclass(frozen=True)
+@record
 class VgbxExport:
     """The ``.vgbx`` JSON ``document`` and its loss maps ``{file name: .vtlm text}``
     (the axle's first), the file names relative to the ``.vgbx``."""

@@ -24,10 +24,11 @@ from __future__ import annotations
 
 import json
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from powergraph.errors import ModelError
+from powergraph.records import record
 
 #: Every relation type of the REXS standard (versions 1.3 to 1.6); another is an error.
 RELATION_TYPES = frozenset({
@@ -42,7 +43,7 @@ _JSON_VALUE_KEYS = ("floating_point", "integer", "boolean", "string", "enum",
                     "string_matrix", "array_of_integer_arrays", "value")
 
 
-@dataclass(frozen=True)
+@record
 class RexsComponent:
     """One component: its integer ``id``, ``type`` (``shaft``, ``cylindrical_gear``…),
     ``name`` and ``attributes`` ``{attribute id: (value, unit)}`` (an XML value is its
@@ -54,7 +55,7 @@ class RexsComponent:
     attributes: dict[str, tuple[Any, str]] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@record
 class RexsRelation:
     """One relation: ``id``, ``type`` and its ``refs`` as ``(role, component id, hint)``."""
 
@@ -67,7 +68,7 @@ class RexsRelation:
         return next((ref for name, ref, _ in self.refs if name == role), None)
 
 
-@dataclass(frozen=True)
+@record
 class RexsDocument:
     """A REXS file: ``version``, ``components`` by id, ``relations`` in file order,
     ``load_cases`` (each ``{component id: {attribute id: (value, unit)}}``), ``source``."""

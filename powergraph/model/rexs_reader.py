@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from powergraph.model.rexs_document import RexsDocument, parse_rexs
 from powergraph.model.rexs_values import AttributeReader
 from powergraph.model.yaml_loader import read_model_bytes
+from powergraph.records import record
 
 #: File suffixes read as REXS wherever a model path is taken.
 REXS_SUFFIXES = (".rexs", ".rexsj")
@@ -41,7 +41,7 @@ _BEARING_ROLES = ("inner_part", "outer_part")
 _FRACTIONS = ("load_duration_fraction", "custom_load_duration_fraction")
 
 
-@dataclass(frozen=True)
+@record
 class RexsImport:
     """What a REXS file gives: ``data`` (the model as plain data, as YAML would give it),
     ``points`` (one row per load case: ``{column: value}`` in the duty-cycle points format,
