@@ -83,9 +83,11 @@ def test_every_model_file(path: Path) -> None:
         return
     single = pg.solve(model)
     assert_conservation(single)
-    if model.buses:                         # machines on buses: the sweep refuses them
-        with pytest.raises(UsageError, match="machines"):
-            one_point(model, "auto")
+    if model.buses:         # machines on buses: each variant the case's solve, at the boundary
+        swept = one_point(model, "auto")
+        assert swept.backend == "single solves"
+        assert swept.efficiency.flat[0] == pytest.approx(single.efficiency, rel=1e-12)
+        assert swept.total_loss.flat[0] == pytest.approx(single.total_loss, rel=1e-12)
         return
     if loss_block_places(model):            # load-dependent losses: the grid evaluates them
         with pytest.raises(ModelError):
@@ -369,9 +371,9 @@ def test_simpson_first_gear_coasting_is_refused_by_every_evaluator() -> None:
 def test_the_hybrid_through_every_evaluator_that_takes_it() -> None:
     """The THS-II power split (machines on a bus, 2 DOF, no modes): its case's answer,
     the same point as a duty-cycle row (solved with the other rows, the bus balance's
-    iteration batched) give the same efficiency and verdict; the evaluators that do not
-    take it say so in one line (the compiled sweep: machines on buses; the formulas: 1-DOF
-    trains; the gear table: no modes)."""
+    iteration batched) and as a sweep's variant (its case's solve) give the same
+    efficiency and verdict; the evaluators that do not take it say so in one line (the
+    formulas: 1-DOF trains; the gear table: no modes)."""
     import io
 
     from powergraph.analyses.cycle import cycle
@@ -398,8 +400,9 @@ def test_the_hybrid_through_every_evaluator_that_takes_it() -> None:
     for row in rows.rows:
         assert row.verdict == point.verdict
         assert row.efficiency == pytest.approx(point.result.efficiency, rel=1e-9)
-    with pytest.raises(UsageError, match="machines on buses"):
-        sweep(model, {"ports.0.speed": [model.ports[0].speed]}, quiet=True)
+    swept = sweep(model, {"ports.0.speed": [model.ports[0].speed]}, quiet=True)
+    assert STATUS[swept.status.flat[0]] == "ok" and not swept.self_locking.flat[0]
+    assert swept.efficiency.flat[0] == pytest.approx(point.result.efficiency, rel=1e-12)
     with pytest.raises(MethodNotApplicableError):
         derive_formulas(model)
     with pytest.raises(ModelError, match="no modes table"):
@@ -410,8 +413,8 @@ def test_the_hybrid_through_every_evaluator_that_takes_it() -> None:
                          ids=lambda v: getattr(v, "stem", v))
 def test_every_hybrid_mode(path: Path, mode: str) -> None:
     """A multi-mode hybrid's mode (docs/modes.md): its case's answer is the gear table's
-    row and a duty-cycle row's at the same point; the compiled sweep refuses it in one
-    line (machines on buses, or ports the mode leaves inactive)."""
+    row, a duty-cycle row's and a one-variant sweep's at the same point (the sweep solves
+    each variant by its case: machines on buses)."""
     import io
 
     from powergraph.analyses.cycle import cycle
@@ -432,6 +435,15 @@ def test_every_hybrid_mode(path: Path, mode: str) -> None:
     rows = cycle(model, io.StringIO(f"mode,{header},duration [s]\n{mode},{cells},1\n"))
     _assert_same(rows.rows[0].efficiency, rows.rows[0].verdict, point.result.efficiency,
                  point.verdict, "cycle row")
-    with pytest.raises(UsageError):
-        sweep(model, {f"ports.{model.outputs[0].index}.speed": [1.0]}, mode=mode,
-              quiet=True)
+    output = point.result.model.outputs[0]
+    swept = sweep(model, {f"ports.{output.index}.speed": [output.speed]}, mode=mode,
+                  quiet=True)
+    swept_verdict = "self-locking" if swept.self_locking.flat[0] else STATUS[
+        swept.status.flat[0]]
+    _assert_same(float(swept.efficiency.flat[0]), swept_verdict, point.result.efficiency,
+                 point.verdict, "sweep")
+    assert swept.total_loss.flat[0] == pytest.approx(point.result.total_loss, rel=1e-9)
+    from powergraph.analyses.formula import derive_formulas
+
+    with pytest.raises(MethodNotApplicableError, match="machines on buses"):
+        derive_formulas(model, mode=mode)      # closed forms: mechanical trains only

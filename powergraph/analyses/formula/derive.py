@@ -58,9 +58,10 @@ def derive_formulas(model: Model, relations: Mapping[str, Any] | None = None,
     Raises
     ------
     MethodNotApplicableError
-        Not one input and one output, more than one DOF, no input power, load-dependent
-        losses (a friction law, bearing friction or drag: the formulas would drop them),
-        or a train whose equations have no unique solution in independent symbols.
+        Machines on buses, not one input and one output, more than one DOF, no input
+        power, load-dependent losses (a friction law, bearing friction or drag: the
+        formulas would drop them), or a train whose equations have no unique solution in
+        independent symbols.
     ModelError, SolveError
         From the numeric solve.
 
@@ -153,6 +154,11 @@ def _directions(elements: tuple[Element, ...], codes: Mapping[int, int],
 
 
 def _check_ports(model: Model) -> None:
+    if model.buses:
+        raise MethodNotApplicableError(
+            "closed forms are derived for a mechanical train; this one has machines on "
+            "buses (its efficiency: solve, the gear table, the sweep or a cycle; "
+            "docs/hybrid.md)", "buses")
     if len(model.inputs) != 1 or len(model.outputs) != 1:
         raise MethodNotApplicableError(
             f"closed forms are derived for one input and one output; this train has "

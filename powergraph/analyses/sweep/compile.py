@@ -28,10 +28,12 @@ from powergraph.analyses.sweep.paths import (Parameter, broadcast_values, check_
 from powergraph.analyses.sweep.result import (CYCLE, LOADS, NO_FREEWHEEL_STATE,
                                              UNSETTLED, SweepResult, converged_of)
 from powergraph.errors import ModelError, PowerGraphError, UsageError
+from powergraph.kinematics import elements_of
 from powergraph.model.spec import Model
 from powergraph.statics import solve
 from powergraph.statics.friction import loss_block_places
 from powergraph.analyses.sweep.single import write_failed as _write_failed
+from powergraph.analyses.sweep.per_point import with_values
 from powergraph.analyses.sweep.single import write_single as _write_single
 
 #: Variants evaluated at once: small enough to keep the work arrays in cache (measured
@@ -104,13 +106,16 @@ class CompiledSweep:
         self.source = model
         model = self.case.plain_model()    # the layout; freewheels as at the model's load
         refuse_loss_blocks(model, "the compiled sweep")
-        if model.buses:
-            raise UsageError("the compiled sweep does not take machines on buses "
-                             "(docs/hybrid.md); solve the points one by one "
-                             "(powergraph cycle does)")
         self.model = model
         self.parameters: tuple[Parameter, ...] = parse_paths(model, paths)
+        self._closed_forms: list = []
+        self._kernels: dict = {}        # (start, codes) -> its numba Kernel (None: failed)
+        if model.buses:     # the bus balance's iteration: every variant solved by its case
+            self.links = tuple(e.link for e in elements_of(model))
+            self.layout = self.backend = None
+            return
         self.layout: Layout = layout_of(model, self.parameters)
+        self.links = self.layout.links
         if backend == "symbolic" and not backends.applies(self.layout):
             raise UsageError("the symbolic backend needs square, statically determinate "
                              f"systems of at most {backends.MAX_SYMBOLIC} unknowns; "
@@ -122,8 +127,6 @@ class CompiledSweep:
         self._base = base_values(model, self.layout)
         self._element = {link: k for k, link in enumerate(self.layout.links)}
         self._moving = _moving(self.layout, self.parameters, self._base)
-        self._closed_forms: list = []
-        self._kernels: dict = {}        # (start, codes) -> its numba Kernel (None: failed)
         if use_symbolic:
             pattern = _base_pattern(model, self._moving)
             if pattern is not None:
@@ -164,7 +167,7 @@ class CompiledSweep:
         kernels = None
         arrays, shape = broadcast_values(self.parameters, values, check=False)
         n = int(np.prod(shape, dtype=np.int64))
-        if self.case.decides_freewheels:
+        if self.case.decides_freewheels or self.layout is None:
             return self._per_point(arrays, shape, n, quiet)
         if n >= KERNEL_MIN_VARIANTS and self._closed_forms:
             kernels = kernel_module()
@@ -193,24 +196,26 @@ class CompiledSweep:
     evaluate = __call__
 
     def _per_point(self, arrays: dict, shape: tuple, n: int, quiet: bool) -> SweepResult:
-        """A mode whose freewheels are decided at each operating point: every variant is
-        the case's own answer (:meth:`powergraph.statics.case.TrainCase.point`), so the
-        sweep decides them exactly where ``solve --mode`` does."""
+        """A mode whose freewheels are decided at each operating point, or a train with
+        machines on buses: every variant is the case's own answer
+        (:meth:`powergraph.statics.case.TrainCase.point`), so the sweep decides the
+        freewheels and balances the buses exactly where ``solve --mode`` does."""
         check_all(self.parameters, arrays)
         flat = flat_values(arrays, shape)
-        outputs = Outputs.empty(n, self.layout.n_elements)
+        outputs = Outputs.empty(n, len(self.links))
         with _progress(n, 1, quiet) as update:
             for j in range(n):
                 try:
-                    point = self.case.point(self._variant(flat, j, self.source))
+                    point = self.case.point(with_values(self.source, self.parameters,
+                                                        flat, j))
                 except PowerGraphError:
                     point = None
                 if point is not None and point.ok:
-                    _write_single(outputs, j, point.result, self.layout)
+                    _write_single(outputs, j, point.result, self.links)
                 else:                             # flagged: no number is made up
                     _write_failed(outputs, j, LOADS if point is None else NO_FREEWHEEL_STATE)
                 update(1)
-        return SweepResult.of(self.model.name, arrays, shape, outputs, self.layout.links,
+        return SweepResult.of(self.model.name, arrays, shape, outputs, self.links,
                               "single solves", converged_of(outputs.status))
 
     def _run_chunks(self, flat: dict, outputs: Outputs, step: int, quiet: bool) -> None:
@@ -298,24 +303,7 @@ class CompiledSweep:
         0.95
         """
         arrays, shape = broadcast_values(self.parameters, values)
-        flat = flat_values(arrays, shape)
-        return self._variant(flat, index)
-
-    def _variant(self, flat: dict, index: int, model: Model | None = None) -> Model:
-        chunk, lay = self._chunk(flat, index, index + 1), self.layout
-        model = self.model if model is None else model
-        scalar = lambda value: float(np.ravel(value)[0])   # noqa: E731
-        for k, link in enumerate(lay.links):
-            changes = {"efficiency": scalar(chunk.efficiencies[k])}
-            if lay.kinds[k] == "mesh":
-                changes["ratio"] = lay.signs[k] * scalar(chunk.magnitudes[k])
-            model = model.with_link(link, **changes)
-        for (_, port), value in zip(lay.speed_ports, chunk.speeds):
-            if port is not None:
-                model = model.with_port(port, speed=scalar(value))
-        for load, value in zip(lay.loads, chunk.loads):
-            model = model.with_port(load.port, **{load.kind: scalar(value)})
-        return model
+        return with_values(self.model, self.parameters, flat_values(arrays, shape), index)
 
     def _decide_undecided(self, flat: dict, start: int, out: Outputs) -> None:
         """Variants whose direction iteration cycles or does not settle go to the single
@@ -323,10 +311,10 @@ class CompiledSweep:
         :func:`powergraph.solve` does (docs/locking.md)."""
         for j in np.flatnonzero((out.status == CYCLE) | (out.status == UNSETTLED)).tolist():
             try:
-                result = solve(self._variant(flat, start + j))
+                result = solve(with_values(self.model, self.parameters, flat, start + j))
             except PowerGraphError:
                 continue                       # left flagged: no number is made up
-            _write_single(out, j, result, self.layout)
+            _write_single(out, j, result, self.layout.links)
 
     @property
     def patterns(self) -> tuple[tuple[tuple[int, ...], tuple[int, ...]], ...]:
