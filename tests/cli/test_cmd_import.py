@@ -4,34 +4,21 @@ solves to the hand-derived ratio (58/17)(67/19) of the two-stage unit
 summary names what was not mapped, and every bad file is one line and exit status 2."""
 from __future__ import annotations
 
-import io
 import json
-from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
 
 import powergraph as pg
-from powergraph.cli.main import main
 from powergraph.testing import assert_conservation
 
 DATA = Path(__file__).resolve().parents[1] / "exchange" / "data"
 HELICAL = DATA / "two_stage_helical.rexs"
 
 
-def run(*argv: str) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with redirect_stdout(out), redirect_stderr(err):
-        try:
-            status = main(list(argv))
-        except SystemExit as exc:
-            status = exc.code
-    return status, out.getvalue(), err.getvalue()
-
-
-def test_import_writes_a_model_and_points(tmp_path: Path) -> None:
+def test_import_writes_a_model_and_points(cli, tmp_path: Path) -> None:
     model, points = tmp_path / "unit.yaml", tmp_path / "unit.csv"
-    status, out, err = run("import", str(HELICAL), "-o", str(model), "--points", str(points),
+    status, out, err = cli("import", str(HELICAL), "-o", str(model), "--points", str(points),
                            "--mesh-efficiency", "0.97")
     assert status == 0, err
     assert f"wrote {model}" in out and f"wrote {points}" in out
@@ -40,7 +27,7 @@ def test_import_writes_a_model_and_points(tmp_path: Path) -> None:
     assert_conservation(result)
     assert result.ratio == pytest.approx((58 / 17) * (67 / 19), rel=1e-12)
     assert result.efficiency == pytest.approx(0.97 ** 2, rel=1e-12)
-    status, out, err = run("cycle", str(model), "--points", str(points), "--json")
+    status, out, err = cli("cycle", str(model), "--points", str(points), "--json")
     assert status == 0, err
     cycle = json.loads(out)
     assert [row["duration"] for row in cycle["rows"]] == [2700.0, 900.0]
@@ -62,23 +49,23 @@ def _bad(tmp_path: Path, text: str, suffix: str = ".rexs") -> Path:
      "</model>", "component 77, which is not in the file"),
     ("<model version='1.4'><components><component id='1'", "not well-formed XML"),
 ])
-def test_bad_files_are_one_line_and_status_2(tmp_path: Path, text: str, words: str) -> None:
+def test_bad_files_are_one_line_and_status_2(cli, tmp_path: Path, text: str, words: str) -> None:
     path = _bad(tmp_path, text)
-    status, out, err = run("import", str(path), "-o", str(tmp_path / "m.yaml"))
+    status, out, err = cli("import", str(path), "-o", str(tmp_path / "m.yaml"))
     lines = err.strip().splitlines()
     assert status == 2 and len(lines) == 1 and "Traceback" not in err, err
     assert str(path) in lines[0] and words in lines[0]
     assert not (tmp_path / "m.yaml").exists()
 
 
-def test_a_too_large_file_is_refused(tmp_path: Path) -> None:
-    status, out, err = run("--max-model-size", "1k", "import", str(HELICAL),
+def test_a_too_large_file_is_refused(cli, tmp_path: Path) -> None:
+    status, out, err = cli("--max-model-size", "1k", "import", str(HELICAL),
                            "-o", str(tmp_path / "m.yaml"))
     assert status == 2 and len(err.strip().splitlines()) == 1, err
     assert "1000" in err or "limit" in err or "larger" in err
 
 
-def test_a_file_that_is_not_named_rexs_is_refused(tmp_path: Path) -> None:
-    status, out, err = run("import", str(_bad(tmp_path, "x", ".xml")), "-o",
+def test_a_file_that_is_not_named_rexs_is_refused(cli, tmp_path: Path) -> None:
+    status, out, err = cli("import", str(_bad(tmp_path, "x", ".xml")), "-o",
                            str(tmp_path / "m.yaml"))
     assert status == 2 and "not a REXS file name" in err
