@@ -31,7 +31,8 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from powergraph.exchange.rexs_import import import_rexs, model_yaml, points_csv
+    from powergraph.exchange.rexs_import import (ideal_meshes, import_rexs, model_yaml,
+                                                 points_csv)
     from powergraph.model.rexs_reader import is_rexs_path
 
     target = check_output_file(args.output, "-o", (".yaml", ".yml"))
@@ -49,6 +50,8 @@ def run(args: argparse.Namespace) -> int:
     if points is not None:
         write_text_atomically(points, table)
         say_wrote(points, f"({len(result.points)} load cases)")
+    for caveat in ideal_meshes(result):
+        print(f"warning: {caveat}")
     if result.unmapped:
         print(f"not mapped from {args.file} ({len(result.unmapped)} kinds; also in the "
               "model file's header):")

@@ -20,7 +20,7 @@ import yaml
 
 from powergraph.errors import ModelError
 from powergraph.model import model_from_dict
-from powergraph.model.rexs_reader import RexsImport, read_rexs
+from powergraph.model.rexs_reader import RexsImport, read_rexs, rexs_caveats
 
 
 def import_rexs(path: str | Path, mesh_efficiency: float | None = None) -> RexsImport:
@@ -34,11 +34,17 @@ def model_yaml(result: RexsImport, source: str) -> str:
     """The imported model as the text of a YAML model file, with a header naming the
     source and what was not mapped."""
     header = [f"# Imported from {Path(source).name} by powergraph import (docs/exchange.md)."]
+    header += [f"# Warning: {c}" for c in ideal_meshes(result)]
     if result.unmapped:
         header.append("# Not mapped:")
         header += [f"#   {line}" for line in result.unmapped]
     body = yaml.safe_dump(result.data, sort_keys=False, allow_unicode=True, width=100)
     return "\n".join(header) + "\n" + body
+
+
+def ideal_meshes(result: RexsImport) -> tuple:
+    """The warning that the imported meshes are ideal (none when they have efficiencies)."""
+    return tuple(c for c in rexs_caveats(result) if c.code == "rexs-ideal-meshes")
 
 
 def points_csv(points: tuple[dict[str, float], ...]) -> str:

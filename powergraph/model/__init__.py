@@ -1,6 +1,7 @@
 """Model layer: YAML reading, validation, the immutable model and its graph (docs/format.md)."""
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 from typing import Any
 
@@ -38,7 +39,13 @@ def load_model(path: str | Path) -> Model:
     >>> model.name                                   # doctest: +SKIP
     'RV-40E'
     """
-    return model_from_dict(load_model_data(path), source=str(path))
+    from powergraph.model.rexs_reader import is_rexs_path, read_rexs, rexs_caveats
+
+    if not is_rexs_path(path):
+        return model_from_dict(load_yaml_file(path), source=str(path))
+    imported = read_rexs(path)
+    model = model_from_dict(imported.data, source=str(path))
+    return dataclasses.replace(model, warnings=model.warnings + rexs_caveats(imported))
 
 
 def load_model_data(path: str | Path) -> Any:

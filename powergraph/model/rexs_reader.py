@@ -28,6 +28,7 @@ from collections import defaultdict
 from pathlib import Path
 from typing import Any
 
+from powergraph.errors import Caveat
 from powergraph.model.rexs_document import RexsDocument, parse_rexs
 from powergraph.model.rexs_values import AttributeReader
 from powergraph.model.yaml_loader import read_model_bytes
@@ -50,6 +51,29 @@ class RexsImport:
     data: dict[str, Any]
     points: tuple[dict[str, float], ...]
     unmapped: tuple[str, ...]
+
+
+def rexs_caveats(imported: RexsImport) -> tuple[Caveat, ...]:
+    """What a model read straight from a REXS file should warn of: meshes without an
+    efficiency (REXS carries none: they are ideal) and the attributes not read.
+
+    >>> data = {"links": [{"type": "mesh", "between": [1, 2]}]}
+    >>> [c.code for c in rexs_caveats(RexsImport(data, (), ("shaft: mass",)))]
+    ['rexs-ideal-meshes', 'rexs-not-mapped']
+    """
+    out = []
+    ideal = [i for i, link in enumerate(imported.data["links"])
+             if link["type"] == "mesh" and "efficiency" not in link]
+    if ideal and "mesh_efficiency" not in imported.data.get("defaults", {}):
+        out.append(Caveat(f"{len(ideal)} mesh(es) without an efficiency (REXS carries "
+                          "none): ideal, η = 1, so no mesh loss; import the file with "
+                          "--mesh-efficiency E, or give the meshes efficiencies or friction "
+                          "blocks in the model file", f"links[{ideal[0]}]",
+                          "rexs-ideal-meshes"))
+    if imported.unmapped:
+        out.append(Caveat(f"not read from the REXS file: {'; '.join(imported.unmapped)}",
+                          None, "rexs-not-mapped"))
+    return tuple(out)
 
 
 def is_rexs_path(path: str | Path) -> bool:

@@ -147,3 +147,26 @@ def test_a_gear_on_no_shaft_is_an_error(tmp_path: Path) -> None:
                     "</components></model>", encoding="utf-8")
     with pytest.raises(ModelError, match="cylindrical gear 1: no assembly relation"):
         read_rexs(path)
+
+
+def test_a_model_read_straight_from_rexs_warns_that_its_meshes_are_ideal(tmp_path) -> None:
+    """REXS carries no mesh efficiency: solved straight from the file, the unit has no
+    mesh loss (efficiency 1 exactly, as ideal meshes give), and says so; what was not
+    read is a warning too. A file whose stages carry powergraph's own efficiency (an
+    export) has no such warning."""
+    from powergraph.exchange.rexs_text import to_xml
+    from powergraph.exchange.rexs_writer import rexs_export
+
+    model = pg.load_model(HELICAL)
+    codes = [w.code for w in model.warnings]
+    assert "rexs-ideal-meshes" in codes and "rexs-not-mapped" in codes
+    result = pg.solve(model)
+    assert_conservation(result)
+    assert result.efficiency == 1.0
+    assert "rexs-ideal-meshes" in [w.code for w in result.warnings]
+    exported = tmp_path / "unit.rexs"
+    lossy = pg.load_model(HELICAL).with_mesh_efficiency(0.98)
+    exported.write_text(to_xml(rexs_export(lossy, None, str(exported)).document))
+    again = pg.load_model(exported)
+    assert "rexs-ideal-meshes" not in [w.code for w in again.warnings]
+    assert pg.solve(again).efficiency == pytest.approx(0.98 ** 2, rel=1e-12)
