@@ -26,17 +26,19 @@ from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank_key, signature
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
-from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts, search_range
+from powergraph.analyses.synthesis.synthesize_bound import search_part
+from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.errors import UsageError
 from powergraph.records import record
 from powergraph.result import aligned_table
 from powergraph.display import Displayed
 from powergraph.format import format_ratio
 
-#: Grid points per chunk of work handed to a worker.
-CHUNK = 1 << 20
-#: Default largest grid of one layout; larger ones are skipped and reported.
-MAX_GRID = 4_000_000
+#: Grid points per part of a layout's search handed to a worker (at most MAX_PARTS parts).
+PART = 1 << 24
+MAX_PARTS = 64
+#: Default largest grid of one layout (a safety limit); larger ones are skipped and reported.
+MAX_GRID = 10**15
 
 
 @record(repr=False)
@@ -184,15 +186,16 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
                              "synthesis needs 1-DOF graphs")
     teeth = (int(teeth[0]), int(teeth[1]))
     items, skipped, evaluated = [], [], 0
+    run_parallel = scheduler is not None or workers is not None
     for gi, graph in enumerate(graphs):
         for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
             if layout.size > max_grid:
                 skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
                 continue
             evaluated += layout.size
-            items += [(graph, gi, li, start, min(layout.size, start + CHUNK), float(ratio),
-                       float(tolerance), teeth, planets)
-                      for start in range(0, layout.size, CHUNK)]
+            parts = min(MAX_PARTS, -(-layout.size // PART)) if run_parallel else 1
+            items += [(graph, gi, li, part, parts, float(ratio), float(tolerance), teeth,
+                       planets) for part in range(parts)]
     with cluster(scheduler=scheduler, workers=workers) as run:
         found = run(_search_item, items)
         merged = _merge([h for part in found for h in part])
@@ -213,8 +216,7 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
 
 
 def _search_item(item: tuple) -> list[Hits]:
-    graph, gi, li, start, stop, ratio, tolerance, teeth, planets = item
-    return search_range(graph, gi, li, start, stop, ratio, tolerance, teeth, planets)
+    return search_part(*item)
 
 
 def _evaluate_item(job: tuple) -> SynthesisRow | None:
@@ -229,7 +231,7 @@ def _merge(hits: Sequence[Hits]) -> list[Hits]:
     groups: dict[tuple, list[Hits]] = {}
     for h in hits:
         groups.setdefault((h.graph, h.layout, h.fixed, h.input, h.output), []).append(h)
-    return [Hits(*key, flat=np.concatenate([h.flat for h in group]))
+    return [Hits(*key, flat=np.sort(np.concatenate([h.flat for h in group])))
             for key, group in sorted(groups.items())]
 
 
