@@ -45,6 +45,8 @@ from powergraph.records import record
 
 #: Nodes of at most this many grid points are enumerated and tested exactly.
 LEAF = 64
+#: Layouts of at most this many grid points are scanned whole (bounding would cost more).
+SCAN = 1 << 18
 #: Nodes bounded at once (bounds the memory of a search).
 BATCH = 1 << 14
 #: Relative slack of the bound test (rounding of the two evaluations of the ratio).
@@ -111,18 +113,19 @@ def factors(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], planet
     shape = layout.shape
     strides = [int(np.prod(shape[f + 1:], dtype=np.int64)) for f in range(len(shape))]
     owners = _owners(layout)
+    moving = moving_pairs(graph)
     out = []
     for f, (size, stride) in enumerate(zip(shape, strides)):
         rows = np.arange(size, dtype=np.int64)
         z = layout.teeth(rows * stride)
         i = willis_ratios(layout, z)
         values = {("i", k): i[k] for k, own in enumerate(owners) if own == (f,)}
+        ordering = [v for (_, k), v in values.items() if k in moving] or list(values.values())
         for k, own in enumerate(owners):
             for side, g in enumerate(own if len(own) == 2 else ()):
                 if g == f:
                     values[("z", k, side)] = z[(k, side)].astype(float)
-        keys = tuple(np.asarray(v) for v in reversed(list(values.values())))
-        order = np.lexsort(keys) if keys else rows
+        order = np.argsort(_morton(ordering), kind="stable")
         height = max(0, int(size - 1).bit_length())
         low, high = {}, {}
         for q, v in values.items():
@@ -130,6 +133,26 @@ def factors(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], planet
         offsets = np.concatenate([[0], np.cumsum([1 << (height - L) for L in range(height)])])
         out.append(Factor(size, stride, height, order, offsets.astype(np.int64), low, high))
     return tuple(out)
+
+
+def _morton(values: list) -> np.ndarray:
+    """Z-order key of each row over the ranks of (at most three of) its quantities: the
+    rows of an aligned segment then span a small box in every quantity at once, not a
+    strip (as a lexicographic order would)."""
+    values = values[:3]
+    key = np.zeros(len(values[0]) if values else 0, dtype=np.uint64)
+    if not values:
+        return key
+    bits = 63 // len(values)
+    ranks = []
+    for v in values:
+        _, rank = np.unique(np.asarray(v, float), return_inverse=True)
+        scale = max(1, int(rank.max()) + 1)
+        ranks.append((rank.astype(np.float64) * (1 << bits) / scale).astype(np.uint64))
+    for b in range(bits):
+        for d, r in enumerate(ranks):
+            key |= ((r >> np.uint64(b)) & np.uint64(1)) << np.uint64(b * len(ranks) + d)
+    return key
 
 
 def _levels(values: np.ndarray, height: int) -> tuple[np.ndarray, np.ndarray]:
@@ -212,15 +235,21 @@ def influential(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], pl
     """Per factor, whether some speed depends on it (an idle planet's teeth move no
     ratio: its factor is enumerated whole at the leaves, never split)."""
     layout = graph_layouts(graph, teeth, planets)[layout_index]
+    out = np.zeros(len(layout.shape), dtype=bool)
+    for k, own in enumerate(_owners(layout)):
+        if k in moving_pairs(graph):
+            out[list(own)] = True
+    return out
+
+
+@functools.lru_cache(maxsize=64)
+def moving_pairs(graph: TrainGraph) -> frozenset[int]:
+    """The gear pairs whose Willis ratio enters some speed."""
     import sympy as sp
 
     used = {str(s) for *_, expressions in speed_expressions(graph)
             for e in expressions for s in sp.sympify(e).free_symbols}
-    out = np.zeros(len(layout.shape), dtype=bool)
-    for k, own in enumerate(_owners(layout)):
-        if f"i_{k}" in used:
-            out[list(own)] = True
-    return out
+    return frozenset(k for k in range(len(graph.gear_pairs)) if f"i_{k}" in used)
 
 
 def _split(tree, level, index, counts) -> tuple[np.ndarray, np.ndarray]:
@@ -273,6 +302,7 @@ def search_part(graph: TrainGraph, graph_index: int, layout_index: int, part: in
     slack = SLACK * abs(ratio)
     band = (band[0] - slack, band[1] + slack)
     moving = influential(graph, layout_index, teeth, planets)
+    limit = SCAN if layout.size <= SCAN else LEAF
     found: dict[tuple[int, int, int], list[np.ndarray]] = {}
     level, index = roots(tree, parts)
     stack = [(level[part::parts], index[part::parts])]
@@ -288,7 +318,7 @@ def search_part(graph: TrainGraph, graph_index: int, layout_index: int, part: in
             keep = may_hit(graph, lows, highs, band)
             level, index, counts = level[keep], index[keep], counts[keep]
         split = np.where(moving, counts, 0)
-        leaf = (np.prod(counts.astype(float), axis=1) <= LEAF) | (split <= 1).all(axis=1)
+        leaf = (np.prod(counts.astype(float), axis=1) <= limit) | (split <= 1).all(axis=1)
         if leaf.any():
             flat = _points(tree, level[leaf], index[leaf], counts[leaf])
             for key, hits in exact_hits(graph, layout, flat, ratio, tolerance).items():
