@@ -30,7 +30,6 @@ from powergraph.analyses.synthesis.synthesize_bound import search_part
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.errors import UsageError
 from powergraph.records import record
-from powergraph.result import aligned_table
 from powergraph.display import Displayed
 from powergraph.format import format_ratio
 
@@ -108,21 +107,17 @@ class SynthesisResult(Displayed):
                 "rows": [row.to_dict() for row in self.rows]}
 
     def text_report(self) -> str:
-        """The ``compare`` table of the rows, the teeth of each, and the search's figures."""
+        """The rows in at most 100 columns: train and figures, then the members driven and
+        fixed (by role and set), then the teeth; and the search's figures."""
         lines = [f"synthesis for ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%} — "
-                 f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements "
-                 f"({self.evaluated} grid points, {self.graphs} graphs, teeth "
+                 f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements",
+                 f"({self.evaluated:.3g} grid points searched, {self.graphs} graphs, teeth "
                  f"{self.teeth[0]}-{self.teeth[1]}, {self.planets} planets, "
                  f"mesh efficiency {self.mesh_efficiency:g})", ""]
         if not self.rows:
             lines.append("no train found")
         else:
-            lines.append(self.comparison().text_report())
-            lines.append("")
-            cells = [["#", "teeth"]]
-            for i, row in enumerate(self.rows, 1):
-                cells.append([str(i), row.teeth_text()])
-            lines += aligned_table(cells, {0})
+            lines += _row_table(self.rows)
         if self.skipped:
             lines.append("")
             lines.append(f"{len(self.skipped)} layout(s) not searched (grid over the limit), "
@@ -132,6 +127,34 @@ class SynthesisResult(Displayed):
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Grouped bars of the rows (delegates to :func:`powergraph.plot.compare.plot_comparison`)."""
         return self.comparison().plot(ax=ax, **kwargs)
+
+
+#: Width of the text report.
+WIDTH = 100
+
+
+def _row_table(rows: Sequence[SynthesisRow]) -> list[str]:
+    """Three lines per row: train and figures; drive; teeth (wrapped at :data:`WIDTH`)."""
+    import textwrap
+
+    head = (f"{'#':>2}  {'train (graph, layout)':<42}  {'ratio':>9}  {'eff %':>5}  "
+            f"{'back %':>6}  {'circ/P':>6}  {'Pv/P':>5}  {'meshes':>6}")
+    out = [head, "-" * len(head)]
+    for i, row in enumerate(rows, 1):
+        back = ("locks" if row.backdrive_self_locking else
+                "-" if row.backdrive_efficiency is None else f"{100 * row.backdrive_efficiency:.2f}")
+        circ = row.circulating_power / row.input_power if row.input_power else 0.0
+        pv = "-" if row.max_virtual_power_ratio is None else f"{row.max_virtual_power_ratio:.3g}"
+        train = textwrap.shorten(f"{row.graph.split(' (')[0]}, {row.layout}", 42,
+                                 placeholder="…")
+        out.append(f"{i:>2}  {train:<42}  {format_ratio(row.ratio):>9}  "
+                   f"{100 * row.efficiency:>5.2f}  {back:>6}  {circ:>6.3f}  {pv:>5}  "
+                   f"{row.meshes:>6}")
+        out += textwrap.wrap(row.drive_text(), WIDTH, initial_indent="    ",
+                             subsequent_indent="      ")
+        out += textwrap.wrap("teeth: " + row.member_teeth_text(), WIDTH,
+                             initial_indent="    ", subsequent_indent="      ")
+    return out
 
 
 def default_graphs(max_links: int = 6) -> tuple[TrainGraph, ...]:

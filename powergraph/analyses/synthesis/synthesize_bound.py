@@ -125,7 +125,7 @@ def factors(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], planet
             for side, g in enumerate(own if len(own) == 2 else ()):
                 if g == f:
                     values[("z", k, side)] = z[(k, side)].astype(float)
-        order = np.argsort(_morton(ordering), kind="stable")
+        order = np.argsort(_morton(ordering), kind="stable") if ordering else rows
         height = max(0, int(size - 1).bit_length())
         low, high = {}, {}
         for q, v in values.items():
@@ -297,6 +297,8 @@ def search_part(graph: TrainGraph, graph_index: int, layout_index: int, part: in
     """Hits of part ``part`` of ``parts`` of one layout's grid (every ``parts``-th node
     of :func:`roots`), found by branch and bound (module docstring)."""
     layout = graph_layouts(graph, teeth, planets)[layout_index]
+    if layout.size == 0:
+        return []
     tree = factors(graph, layout_index, teeth, planets)
     band = tuple(sorted((ratio * (1 - tolerance), ratio * (1 + tolerance))))
     slack = SLACK * abs(ratio)
