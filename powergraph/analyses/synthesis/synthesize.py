@@ -37,7 +37,7 @@ from powergraph.format import format_ratio
 PART = 1 << 24
 MAX_PARTS = 64
 #: Default largest grid of one layout (a safety limit); larger ones are skipped and reported.
-MAX_GRID = 10**15
+MAX_GRID = 10**7
 
 
 @record(repr=False)
