@@ -3,11 +3,12 @@
 For each graph (the enumeration up to ``max_links`` links, or the classic trains of
 :mod:`~powergraph.analyses.synthesis.synthesize_classics`) and each layout of its teeth
 (:mod:`~powergraph.analyses.synthesis.teeth`), every choice of fixed link, input and output
-among the coaxial links is searched at once over the layout's integer grid
-(:mod:`~powergraph.analyses.synthesis.synthesize_search`); the feasible tooth sets are
-evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). The work is
-mapped over chunks with :func:`powergraph.analyses.parallel.map_chunks` (in process, on
-local worker processes, or on a Dask cluster). docs/synthesis.md.
+among the coaxial links is searched at once over the layout's tooth space by bounds on the
+ratio (:mod:`~powergraph.analyses.synthesis.synthesize_bound`); the feasible tooth sets are
+evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). One task per
+graph (search and evaluation, so each graph's derivations are made once, where they are
+used) is mapped with :func:`powergraph.analyses.parallel.cluster` (in process, on local
+worker processes, or on a Dask cluster); only rows travel back. docs/synthesis.md.
 
 Examples
 --------
@@ -33,9 +34,6 @@ from powergraph.records import record
 from powergraph.display import Displayed
 from powergraph.format import format_ratio
 
-#: Grid points per part of a layout's search handed to a worker (at most MAX_PARTS parts).
-PART = 1 << 24
-MAX_PARTS = 64
 #: Default largest grid of one layout (a safety limit); larger ones are skipped and reported.
 MAX_GRID = 10**7
 
@@ -208,23 +206,13 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
             raise UsageError(f"graph {g.name or g} has {g.dof} degrees of freedom; "
                              "synthesis needs 1-DOF graphs")
     teeth = (int(teeth[0]), int(teeth[1]))
-    items, skipped, evaluated = [], [], 0
-    run_parallel = scheduler is not None or workers is not None
-    for gi, graph in enumerate(graphs):
-        for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
-            if layout.size > max_grid:
-                skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
-                continue
-            evaluated += layout.size
-            parts = min(MAX_PARTS, -(-layout.size // PART)) if run_parallel else 1
-            items += [(graph, gi, li, part, parts, float(ratio), float(tolerance), teeth,
-                       planets) for part in range(parts)]
+    items = [(graph, gi, float(ratio), float(tolerance), teeth, planets, max_grid,
+              float(mesh_efficiency)) for gi, graph in enumerate(graphs)]
     with cluster(scheduler=scheduler, workers=workers) as run:
-        found = run(_search_item, items)
-        merged = _merge([h for part in found for h in part])
-        jobs = [(graphs[h.graph], h, float(ratio), teeth, planets, float(mesh_efficiency))
-                for h in merged]
-        rows = [row for row in run(_evaluate_item, jobs) if row is not None]
+        done = run(_graph_item, items)
+    rows = [row for part in done for row in part[0]]
+    skipped = [entry for part in done for entry in part[1]]
+    evaluated = sum(part[2] for part in done)
     ranked, seen = [], set()
     for row in sorted(rows, key=rank_key):
         if signature(row) not in seen:
@@ -238,24 +226,22 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped))
 
 
-def _search_item(item: tuple) -> list[Hits]:
-    return search_part(*item)
-
-
-def _evaluate_item(job: tuple) -> SynthesisRow | None:
-    graph, hits, ratio, teeth, planets, mesh_efficiency = job
-    return evaluate_hits(graph, hits, ratio, teeth, planets, mesh_efficiency)
-
-
-def _merge(hits: Sequence[Hits]) -> list[Hits]:
-    """One :class:`Hits` per arrangement, chunks joined in grid order."""
-    import numpy as np
-
-    groups: dict[tuple, list[Hits]] = {}
-    for h in hits:
-        groups.setdefault((h.graph, h.layout, h.fixed, h.input, h.output), []).append(h)
-    return [Hits(*key, flat=np.sort(np.concatenate([h.flat for h in group])))
-            for key, group in sorted(groups.items())]
+def _graph_item(item: tuple) -> tuple[list[SynthesisRow], list[tuple], int]:
+    """One task: every layout of one graph searched, its arrangements evaluated. The
+    graph's derivations and layouts are then made once, on the worker that uses them,
+    and only the rows travel back."""
+    graph, gi, ratio, tolerance, teeth, planets, max_grid, mesh_efficiency = item
+    hits: list[Hits] = []
+    skipped, evaluated = [], 0
+    for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
+        if layout.size > max_grid:
+            skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
+            continue
+        evaluated += layout.size
+        hits += search_part(graph, gi, li, 0, 1, ratio, tolerance, teeth, planets)
+    rows = [evaluate_hits(graph, h, ratio, teeth, planets, mesh_efficiency)
+            for h in hits]
+    return [row for row in rows if row is not None], skipped, evaluated
 
 
 def _check(ratio, tolerance, teeth, planets, mesh_efficiency, top, max_grid) -> None:
