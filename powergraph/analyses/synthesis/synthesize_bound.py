@@ -20,7 +20,7 @@ holds no hit and is dropped; otherwise it is split in two along its largest fact
 of at most :data:`LEAF` grid points are enumerated and every point passes the exact test of
 :func:`~powergraph.analyses.synthesis.synthesize_search.exact_hits`, the test a plain grid
 scan applies. The pruning only drops boxes that provably hold no hit (a slack of
-``1e-7`` relative covers rounding), so the hits are exactly those of the full grid scan.
+``1e-6`` relative covers rounding), so the hits are exactly those of the full grid scan.
 
 Examples
 --------
@@ -50,7 +50,7 @@ SCAN = 1 << 18
 #: Nodes bounded at once (bounds the memory of a search).
 BATCH = 1 << 14
 #: Relative slack of the bound test (rounding of the two evaluations of the ratio).
-SLACK = 1e-7
+SLACK = 1e-6
 
 
 @functools.lru_cache(maxsize=64)
