@@ -118,7 +118,7 @@ def test_no_two_rows_read_the_same(capsys, tmp_path) -> None:
     status, out, err = run(capsys, "--ratio", "100", "--top", "8", "-o", str(tmp_path))
     assert status == 0, err
     lines = out.splitlines()
-    assert max(len(line) for line in lines) <= 100
+    assert max(len(line) for line in lines if not line.startswith("wrote ")) <= 100
     starts = [i for i, x in enumerate(lines) if re.match(r" ?\d+  ", x)]
     assert len(starts) == 8
     # the enumeration's graph number tells a reader nothing: drop it, rows must still differ
