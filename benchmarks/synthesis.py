@@ -86,6 +86,8 @@ def scaling(args, graphs) -> dict:
     problem; cluster start-up timed apart from the search."""
     from dask.distributed import Client, LocalCluster
 
+    from powergraph.analyses.parallel import numpy_friendly_workers
+
     problem = dict(graphs=graphs, top=None, teeth=args.teeth, max_grid=args.max_grid,
                    max_links=args.max_links)
     start = time.perf_counter()
@@ -95,8 +97,9 @@ def scaling(args, graphs) -> dict:
            "skipped_layouts": len(alone.skipped)}
     for n in args.workers:
         start = time.perf_counter()
-        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                          dashboard_address=None) as local, Client(local):
+        with numpy_friendly_workers(), LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True,
+                dashboard_address=None) as local, Client(local):
             started = time.perf_counter()
             spread = synthesize(args.ratio, scheduler=local.scheduler_address, **problem)
             done = time.perf_counter()

@@ -91,14 +91,14 @@ def cluster(*, scheduler: str | None = None, workers: int | None = None
             yield lambda function, items, in_flight=None: _run(client, function, list(items),
                                                                in_flight)
         return
-    with _numpy_friendly_workers(), LocalCluster(
+    with numpy_friendly_workers(), LocalCluster(
             n_workers=workers, threads_per_worker=1, processes=True,
             dashboard_address=None) as local, Client(local) as client:
         yield lambda function, items, in_flight=None: _run(client, function, list(items),
                                                            in_flight)
 
 
-def _numpy_friendly_workers() -> Any:
+def numpy_friendly_workers() -> Any:
     """Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_`` in the workers it starts (to hand
     freed memory back to the system). Setting it fixes glibc's mmap threshold, so every
     large numpy temporary is mapped and unmapped again: the synthesis ran about twice as
