@@ -103,7 +103,14 @@ def numpy_friendly_workers() -> Any:
     freed memory back to the system). Setting it fixes glibc's mmap threshold, so every
     large numpy temporary is mapped and unmapped again: the synthesis ran about twice as
     slowly in such a worker as in this process (measured, docs/synthesis.md). The local
-    workers started here keep glibc's default."""
+    workers started here keep glibc's default: a ``dask.config.set`` context for
+    starting them.
+
+    Examples
+    --------
+    >>> with numpy_friendly_workers():                          # doctest: +SKIP
+    ...     local = LocalCluster(n_workers=2, threads_per_worker=1)
+    """
     import dask
 
     environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
