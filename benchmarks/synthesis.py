@@ -1,30 +1,30 @@
-"""Synthesis for a ratio: candidates evaluated per second, against one solve per candidate.
+"""Synthesis for a ratio: one process against Dask workers, and against a naive loop.
 
-A **candidate** is one tooth set of one layout of one graph with one choice of fixed
-link, input and output: ``synthesize`` evaluates every grid point of a layout for every
-choice at once. The run:
+The problem is ``synthesize(RATIO)`` over the enumeration's graphs of at most
+``--max-links`` links (``--classics``: the classic trains only), layouts up to
+``--max-grid`` grid points, teeth ``--teeth``. The run:
 
-(a) ``synthesize(RATIO, graphs=classic_graphs(6))`` in this process, wall-clock from
-    the call to the result, after a warm-up run (``synthesis_cold_s``: that first run,
-    with the sympy derivations of the speeds and the layouts' grids, which the process
-    then keeps; ``--cold`` skips it);
-(b) the naive way, one model and one ``powergraph.solve`` per candidate, on ``--loop``
-    candidates drawn at random from the same grids (seeded), extrapolated; the time of
-    the solves alone is also given (the models built beforehand);
-(c) the same synthesis on a Dask ``LocalCluster`` of 2 worker processes
-    (``workers=2``); ``dask_matches`` says whether its result equals (a)'s exactly
-    (``to_dict()`` compared), ``dask_s`` its wall-clock time (cluster start included).
+(a) the search in this process, from cold (sympy derivations and layouts included, as a
+    fresh worker pays them): ``one_process_s``;
+(b) for each N of ``--workers`` (default 2): a ``LocalCluster`` of N single-threaded
+    worker processes, its start-up timed apart (``workers_N_startup_s``), the same search
+    on it (``workers_N_s``), the ratio (a)/(search on N workers) (``workers_N_speedup``)
+    and whether the result equals (a)'s exactly (``to_dict()``: ``workers_N_matches``);
+(c) with ``--naive``: one model and one ``powergraph.solve`` per candidate on ``--loop``
+    candidates drawn from the classic graphs' grids (seeded), extrapolated, against the
+    search over those grids.
 
-``speedup`` is candidates per second of (a) over (b) with model building,
-``speedup_solve_only`` over the solves alone. Times are single runs (``time.perf_counter``)
-on a shared machine, so noisy.
+Times are single runs (``time.perf_counter``) on a shared machine, so noisy: compare
+numbers of one run only.
 
-Usage: python benchmarks/synthesis.py [--json] [--ratio R] [--loop N] [--no-dask]
+Usage: python benchmarks/synthesis.py [--json] [--ratio R] [--max-links N] [--max-grid G]
+       [--teeth LOW:HIGH] [--classics] [--workers 2,4] [--naive] [--loop N]
 """
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 
@@ -43,7 +43,7 @@ def candidates(graphs, teeth=(12, 120), planets=3) -> tuple[int, list]:
         choices = [(f, a, b) for f, others, _ in speed_functions(graph)
                    for a in others for b in others if a != b]
         for layout in graph_layouts(graph, teeth, planets):
-            if layout.size <= MAX_GRID:
+            if layout.size <= 4_000_000:
                 total += layout.size * len(choices)
                 searched.append((graph, layout, choices))
     return total, searched
@@ -81,46 +81,75 @@ def naive(searched, count: int, seed: int = 1) -> tuple[float, float]:
     return (built + solved) / count, solved / count
 
 
+def scaling(args, graphs) -> dict:
+    """One process against local clusters of ``args.workers`` worker processes on one
+    problem; cluster start-up timed apart from the search."""
+    from dask.distributed import Client, LocalCluster
+
+    from powergraph.analyses.parallel import numpy_friendly_workers
+
+    problem = dict(graphs=graphs, top=None, teeth=args.teeth, max_grid=args.max_grid,
+                   max_links=args.max_links)
+    start = time.perf_counter()
+    alone = synthesize(args.ratio, **problem)
+    out = {"one_process_s": round(time.perf_counter() - start, 2),
+           "grid_points": alone.evaluated, "feasible_tooth_sets": alone.feasible,
+           "skipped_layouts": len(alone.skipped)}
+    for n in args.workers:
+        start = time.perf_counter()
+        with numpy_friendly_workers(), LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True,
+                dashboard_address=None) as local, Client(local):
+            started = time.perf_counter()
+            spread = synthesize(args.ratio, scheduler=local.scheduler_address, **problem)
+            done = time.perf_counter()
+        out[f"workers_{n}_startup_s"] = round(started - start, 2)
+        out[f"workers_{n}_s"] = round(done - started, 2)
+        out[f"workers_{n}_speedup"] = round(out["one_process_s"] / (done - started), 2)
+        out[f"workers_{n}_matches"] = spread.to_dict() == alone.to_dict()
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--ratio", type=float, default=121.0)
+    parser.add_argument("--max-links", type=int, default=6,
+                        help="problem size: graphs of the enumeration up to N links")
+    parser.add_argument("--max-grid", type=float, default=MAX_GRID,
+                        help="problem size: largest layout grid searched")
+    parser.add_argument("--teeth", type=lambda t: tuple(int(x) for x in t.split(":")),
+                        default=(12, 120), help="problem size: LOW:HIGH")
+    parser.add_argument("--classics", action="store_true",
+                        help="the classic graphs only (not the enumeration)")
+    parser.add_argument("--workers", type=lambda t: [int(x) for x in t.split(",")],
+                        default=[2], help="worker counts to compare, e.g. 2,4")
+    parser.add_argument("--naive", action="store_true",
+                        help="also the naive loop (one solve per candidate) on --loop "
+                             "candidates of the classic graphs")
     parser.add_argument("--loop", type=int, default=300)
-    parser.add_argument("--cold", action="store_true", help="no warm-up run")
-    parser.add_argument("--no-dask", action="store_true")
     args = parser.parse_args(argv)
-    graphs = classic_graphs(6)
-    cold_s = None
-    if not args.cold:
+    args.max_grid = int(args.max_grid)
+    graphs = classic_graphs(args.max_links) if args.classics else None
+    out = {"ratio": args.ratio, "max_links": args.max_links, "max_grid": args.max_grid,
+           "teeth": list(args.teeth), "cores": os.cpu_count()}
+    out.update(scaling(args, graphs))
+    if args.naive:
+        graphs = classic_graphs(6)
         start = time.perf_counter()
-        synthesize(args.ratio, graphs=graphs, top=None)
-        cold_s = round(time.perf_counter() - start, 2)
-    start = time.perf_counter()
-    alone = synthesize(args.ratio, graphs=graphs, top=None)
-    synthesis_s = time.perf_counter() - start
-    total, searched = candidates(graphs)
-    per_candidate, per_solve = naive(searched, args.loop)
-    out = {"ratio": args.ratio, "graphs": len(graphs), "grid_points": alone.evaluated,
-           "candidates": total, "feasible_tooth_sets": alone.feasible,
-           "arrangements": alone.arrangements, "synthesis_s": round(synthesis_s, 2),
-           "synthesis_cold_s": cold_s,
-           "synthesis_per_s": round(total / synthesis_s),
-           "naive_per_s": round(1 / per_candidate, 1),
-           "solve_only_per_s": round(1 / per_solve, 1),
-           "speedup": round(total / synthesis_s * per_candidate, 1),
-           "speedup_solve_only": round(total / synthesis_s * per_solve, 1),
-           "naive_extrapolated_s": round(total * per_candidate)}
-    if not args.no_dask:
-        start = time.perf_counter()
-        spread = synthesize(args.ratio, graphs=graphs, top=None, workers=2)
-        out["dask_s"] = round(time.perf_counter() - start, 2)
-        out["dask_matches"] = spread.to_dict() == alone.to_dict()
+        synthesize(args.ratio, graphs=graphs, top=None, max_grid=4_000_000)
+        synthesis_s = time.perf_counter() - start
+        total, searched = candidates(graphs)
+        per_candidate, per_solve = naive(searched, args.loop)
+        out.update({"naive_candidates": total, "naive_synthesis_s": round(synthesis_s, 2),
+                    "naive_per_s": round(1 / per_candidate, 1),
+                    "speedup_over_naive": round(total / synthesis_s * per_candidate, 1)})
     if args.json:
         print(json.dumps(out))
     else:
         for key, value in out.items():
             print(f"{key:24s} {value}")
-    return 0 if out.get("dask_matches", True) else 1
+    return 0 if all(v for k, v in out.items() if k.endswith("_matches")) else 1
 
 
 if __name__ == "__main__":

@@ -91,10 +91,31 @@ def cluster(*, scheduler: str | None = None, workers: int | None = None
             yield lambda function, items, in_flight=None: _run(client, function, list(items),
                                                                in_flight)
         return
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as local, Client(local) as client:
+    with numpy_friendly_workers(), LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True,
+            dashboard_address=None) as local, Client(local) as client:
         yield lambda function, items, in_flight=None: _run(client, function, list(items),
                                                            in_flight)
+
+
+def numpy_friendly_workers() -> Any:
+    """Dask's nanny sets ``MALLOC_TRIM_THRESHOLD_`` in the workers it starts (to hand
+    freed memory back to the system). Setting it fixes glibc's mmap threshold, so every
+    large numpy temporary is mapped and unmapped again: the synthesis ran about twice as
+    slowly in such a worker as in this process (measured, docs/synthesis.md). The local
+    workers started here keep glibc's default: a ``dask.config.set`` context for
+    starting them.
+
+    Examples
+    --------
+    >>> with numpy_friendly_workers():                          # doctest: +SKIP
+    ...     local = LocalCluster(n_workers=2, threads_per_worker=1)
+    """
+    import dask
+
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}))
+    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    return dask.config.set({"distributed.nanny.pre-spawn-environ": environ})
 
 
 def _run(client: Any, function: Callable, items: Sequence[Any], in_flight: int | None

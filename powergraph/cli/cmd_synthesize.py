@@ -40,8 +40,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     parser.add_argument("--mesh-efficiency", default="0.98", metavar="E",
                         help="basic efficiency of every mesh (default 0.98)")
     parser.add_argument("--top", default="10", metavar="K", help="rows shown (default 10)")
-    parser.add_argument("--max-grid", default="4000000", metavar="N",
-                        help="largest tooth grid of one layout searched (default 4000000)")
+    parser.add_argument("--max-grid", default=None, metavar="N",
+                        help="safety limit: layouts whose tooth grid has more points are "
+                             "skipped and reported (default: the library's MAX_GRID)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("-o", "--output", metavar="DIR",
                         help="write the best K models and their power-flow diagrams here")
@@ -89,10 +90,11 @@ def run(args: argparse.Namespace) -> int:
         max_links=whole_option(args.max_links, "--max-links", 3, 8),
         teeth=parse_teeth(args.teeth), planets=whole_option(args.planets, "--planets", 1, 64),
         mesh_efficiency=efficiency, top=whole_option(args.top, "--top", 1, 1000),
-        max_grid=whole_option(args.max_grid, "--max-grid", 1, 10**12),
         **cluster_options(args))
-    from powergraph.analyses.synthesis.synthesize import synthesize
+    from powergraph.analyses.synthesis.synthesize import MAX_GRID, synthesize
 
+    options["max_grid"] = (MAX_GRID if args.max_grid is None
+                           else whole_option(args.max_grid, "--max-grid", 1, 10**18))
     result = synthesize(ratio, **options)
     if args.json:
         print_json(result.to_dict())

@@ -395,6 +395,10 @@ def cluster_options(args: Any) -> dict[str, Any]:
     """``{"workers": N or None, "scheduler": address or None}`` from the parsed options;
     a bad number or address is a :class:`~powergraph.errors.UsageError` (exit 2)."""
     workers = None if args.workers is None else whole_option(args.workers, "--workers", 1, 1024)
+    cores = os.cpu_count() or 1
+    if workers is not None and workers > cores:
+        print(f"warning: --workers {workers} on a machine with {cores} cores: the workers "
+              f"share them, no faster than {cores}", file=sys.stderr)
     if args.scheduler:
         from powergraph.analyses.parallel import scheduler_address
 

@@ -310,7 +310,9 @@ def test_result_protocol_and_json() -> None:
     assert isinstance(result, Result) and len(result) <= 3
     json.dumps(result.to_dict())
     text = result.text_report()
-    assert "synthesis for ratio 5 : 1" in text and "eff. %" in text
+    assert "synthesis for ratio 5 : 1" in text and "eff %" in text
+    assert max(len(line) for line in text.splitlines()) <= 100
+    assert "sun in, carrier out, ring fixed" in text      # members by role, one set
     ax = result.plot()
     assert [t.get_text() for t in ax.get_xticklabels()] == [r.name for r in result]
 

@@ -70,3 +70,23 @@ def test_rows_name_gears_and_written_models_carry_names_and_planet_counts() -> N
         assert_conservation(solved)
         assert solved.ratio == pytest.approx(row.ratio, rel=1e-9)
         assert solved.efficiency == pytest.approx(row.efficiency, rel=1e-9)
+
+
+def test_members_are_named_by_role_and_set() -> None:
+    # two 2K-H stages (synthesize_classics): common ring 0, sun 1, planet 2 on carrier 3
+    # (set 1: the carrier of lower link number), carrier 3 also the second sun, planet 4 on
+    # carrier 5 (set 2). Whether a coaxial gear is a sun or a ring is the layout's choice.
+    from powergraph.analyses.synthesis.naming import member_names
+
+    for layout in layouts(CLASSICS["two 2K-H stages"], (12, 40)):
+        names = member_names(layout)
+        internal = layout.internal
+        kind = {k: "ring" if k in internal else "sun" for k in range(4)}
+        assert names["L1"] == f"{kind[0]} 1"
+        assert names["L0"] == f"{kind[1]} 1+{kind[3]} 2"
+        assert names["L3"] == f"carrier 1+{kind[2]} 2"
+        assert names["L5"] == "carrier 2"
+        assert (names["L2"], names["L4"]) == ("planet 1", "planet 2")
+    single = member_names(layouts(CLASSICS["Wolfrom 3K"], (12, 40))[0])
+    assert single["L3"] == "carrier" and single["L4"] == "planet"    # one set: no number
+    assert len(set(single.values())) == len(single)                  # two suns: a, b

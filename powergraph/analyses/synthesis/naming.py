@@ -17,6 +17,7 @@ Examples
 """
 from __future__ import annotations
 
+from collections import Counter
 from typing import Mapping
 
 from powergraph.analyses.synthesis.teeth import Layout
@@ -91,6 +92,55 @@ def gear_names(layout: Layout) -> dict[str, str]:
                 role = "cycloid" if link in st.coupled else "planet"
             names[f"g{k}{'ab'[side]}"] = f"{role} L{link}"
     return names
+
+
+def member_names(layout: Layout) -> dict[str, str]:
+    """``{"L1": "sun 1", ...}``: each link by its role and planetary **set** (a carrier
+    with its planets, numbered in link order; no number when there is one set):
+    ``sun 2``, ``ring 1+carrier 2``, ``planet 1`` (``planet 1a``, ``1b`` when a set has
+    several planet links), ``cycloid``, ``crank``, ``output disk``.
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> from powergraph.analyses.synthesis.teeth import layouts
+    >>> sorted(member_names(layouts(CLASSICS["2K-H"])[0]).items())
+    [('L0', 'sun'), ('L1', 'ring'), ('L2', 'planet'), ('L3', 'carrier')]
+    """
+    st, graph, internal = layout.structure, layout.graph, layout.internal
+    carriers = sorted({c for *_, c in graph.gear_pairs if c in st.coaxial})
+    number = {c: "" if len(carriers) == 1 else f" {j}" for j, c in enumerate(carriers, 1)}
+    roles: dict[int, list[str]] = {}
+
+    def add(link: int, role: str) -> None:
+        if role not in roles.setdefault(link, []):
+            roles[link].append(role)
+
+    planets: dict[int, list[int]] = {}
+    for k, (u, v, carrier) in enumerate(graph.gear_pairs):
+        tag = number.get(carrier, "")
+        if carrier in st.coaxial:
+            add(carrier, ("crank" if st.kinds[k] == "khv" else "carrier") + tag)
+        for side, link in enumerate((u, v)):
+            if st.coaxial_side[k] == side:
+                add(link, ("ring" if internal.get(k) == side else "sun") + tag)
+            elif link in st.coupled:
+                add(link, "cycloid")
+            elif link not in planets.setdefault(carrier, []):
+                planets[carrier].append(link)
+    for carrier, links in planets.items():
+        for link in links:
+            add(link, f"planet{number.get(carrier, '')}")
+    for u, v in graph.couplings:
+        for link in (u, v):
+            if link in st.coaxial:
+                add(link, "output disk")
+    names = {n: "+".join(r) for n, r in sorted(roles.items())}
+    count = Counter(names.values())
+    seen: Counter = Counter()
+    for n, name in names.items():        # two suns of one set: sun a, sun b
+        if count[name] > 1:
+            names[n] = f"{name} {'abcdefghij'[seen[name]]}"
+            seen[name] += 1
+    return {f"L{n}": name for n, name in names.items()}
 
 
 def teeth_text(teeth: Mapping[str, int], names: Mapping[str, str]) -> str:

@@ -16,13 +16,14 @@ each arrangement's best tooth set), meshes, and largest virtual power.
 """
 from __future__ import annotations
 
+import re
 from dataclasses import asdict, field
 from typing import Any, Mapping
 
 import numpy as np
 
 from powergraph.analyses.synthesis.naming import (arrangement_name, gear_names, link_names,
-                                                  teeth_text)
+                                                  member_names, teeth_text)
 from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.analyses.synthesis.teeth import Layout
 from powergraph.records import record
@@ -59,6 +60,7 @@ class SynthesisRow:
     candidates: int
     document: Mapping[str, Any]
     gear_names: Mapping[str, str] = field(default_factory=dict)
+    members: Mapping[str, str] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         """Every field but the model document (see :meth:`model_document`)."""
@@ -67,7 +69,23 @@ class SynthesisRow:
         out["teeth"] = dict(self.teeth)
         out["rings"] = list(self.rings)
         out["gear_names"] = dict(self.gear_names)
+        out["members"] = dict(self.members)
         return out
+
+    def drive_text(self) -> str:
+        """``sun 1 in, carrier 2 out, ring 1+ring 2 fixed``: the members by role and set
+        (:func:`~powergraph.analyses.synthesis.naming.member_names`)."""
+        name = {n: self.members.get(f"L{n}", f"L{n}") for n in (self.input, self.output,
+                                                                 self.fixed)}
+        note = self.name.split("; ", 1)[1] if "; " in self.name else ""
+        note = re.sub(r"L\d+", lambda m: self.members.get(m[0], m[0]), note)
+        return (f"{name[self.input]} in, {name[self.output]} out, "
+                f"{name[self.fixed]} fixed" + (f"; {note}" if note else ""))
+
+    def member_teeth_text(self) -> str:
+        """The tooth numbers by member: ``sun=12, planet=54, ring=120``."""
+        names = {g: self.members.get(n.split(" ")[-1], n) for g, n in self.gear_names.items()}
+        return teeth_text(self.teeth, names)
 
     def teeth_text(self) -> str:
         """``sun L1=12, planet L2=45, ring L0=102`` (gear ids where no name is known)."""
@@ -131,7 +149,7 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
         max_virtual_power_ratio=None if np.isnan(pv[best]) else float(pv[best]),
         meshes=len(graph.gear_pairs), input_power=float(forward.input_power[best]),
         candidates=int(working.sum()), document=doc,
-        gear_names=gear_names(layout))
+        gear_names=gear_names(layout), members=member_names(layout))
 
 
 def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficiency: float

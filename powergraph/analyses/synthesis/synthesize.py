@@ -3,11 +3,12 @@
 For each graph (the enumeration up to ``max_links`` links, or the classic trains of
 :mod:`~powergraph.analyses.synthesis.synthesize_classics`) and each layout of its teeth
 (:mod:`~powergraph.analyses.synthesis.teeth`), every choice of fixed link, input and output
-among the coaxial links is searched at once over the layout's integer grid
-(:mod:`~powergraph.analyses.synthesis.synthesize_search`); the feasible tooth sets are
-evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). The work is
-mapped over chunks with :func:`powergraph.analyses.parallel.map_chunks` (in process, on
-local worker processes, or on a Dask cluster). docs/synthesis.md.
+among the coaxial links is searched at once over the layout's tooth space by bounds on the
+ratio (:mod:`~powergraph.analyses.synthesis.synthesize_bound`); the feasible tooth sets are
+evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). One task per
+graph (search and evaluation, so each graph's derivations are made once, where they are
+used) is mapped with :func:`powergraph.analyses.parallel.cluster` (in process, on local
+worker processes, or on a Dask cluster); only rows travel back. docs/synthesis.md.
 
 Examples
 --------
@@ -26,17 +27,15 @@ from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank_key, signature
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
-from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts, search_range
+from powergraph.analyses.synthesis.synthesize_bound import search_part
+from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
 from powergraph.errors import UsageError
 from powergraph.records import record
-from powergraph.result import aligned_table
 from powergraph.display import Displayed
 from powergraph.format import format_ratio
 
-#: Grid points per chunk of work handed to a worker.
-CHUNK = 1 << 20
-#: Default largest grid of one layout; larger ones are skipped and reported.
-MAX_GRID = 4_000_000
+#: Default largest grid of one layout (a safety limit); larger ones are skipped and reported.
+MAX_GRID = 10**7
 
 
 @record(repr=False)
@@ -106,21 +105,17 @@ class SynthesisResult(Displayed):
                 "rows": [row.to_dict() for row in self.rows]}
 
     def text_report(self) -> str:
-        """The ``compare`` table of the rows, the teeth of each, and the search's figures."""
+        """The rows in at most 100 columns: train and figures, then the members driven and
+        fixed (by role and set), then the teeth; and the search's figures."""
         lines = [f"synthesis for ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%} — "
-                 f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements "
-                 f"({self.evaluated} grid points, {self.graphs} graphs, teeth "
+                 f"{self.feasible} feasible tooth sets in {self.arrangements} arrangements",
+                 f"({self.evaluated:.3g} grid points searched, {self.graphs} graphs, teeth "
                  f"{self.teeth[0]}-{self.teeth[1]}, {self.planets} planets, "
                  f"mesh efficiency {self.mesh_efficiency:g})", ""]
         if not self.rows:
             lines.append("no train found")
         else:
-            lines.append(self.comparison().text_report())
-            lines.append("")
-            cells = [["#", "teeth"]]
-            for i, row in enumerate(self.rows, 1):
-                cells.append([str(i), row.teeth_text()])
-            lines += aligned_table(cells, {0})
+            lines += _row_table(self.rows)
         if self.skipped:
             lines.append("")
             lines.append(f"{len(self.skipped)} layout(s) not searched (grid over the limit), "
@@ -130,6 +125,34 @@ class SynthesisResult(Displayed):
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Grouped bars of the rows (delegates to :func:`powergraph.plot.compare.plot_comparison`)."""
         return self.comparison().plot(ax=ax, **kwargs)
+
+
+#: Width of the text report.
+WIDTH = 100
+
+
+def _row_table(rows: Sequence[SynthesisRow]) -> list[str]:
+    """Three lines per row: train and figures; drive; teeth (wrapped at :data:`WIDTH`)."""
+    import textwrap
+
+    head = (f"{'#':>2}  {'train (graph, layout)':<42}  {'ratio':>9}  {'eff %':>5}  "
+            f"{'back %':>6}  {'circ/P':>6}  {'Pv/P':>5}  {'meshes':>6}")
+    out = [head, "-" * len(head)]
+    for i, row in enumerate(rows, 1):
+        back = ("locks" if row.backdrive_self_locking else
+                "-" if row.backdrive_efficiency is None else f"{100 * row.backdrive_efficiency:.2f}")
+        circ = row.circulating_power / row.input_power if row.input_power else 0.0
+        pv = "-" if row.max_virtual_power_ratio is None else f"{row.max_virtual_power_ratio:.3g}"
+        train = textwrap.shorten(f"{row.graph.split(' (')[0]}, {row.layout}", 42,
+                                 placeholder="…")
+        out.append(f"{i:>2}  {train:<42}  {format_ratio(row.ratio):>9}  "
+                   f"{100 * row.efficiency:>5.2f}  {back:>6}  {circ:>6.3f}  {pv:>5}  "
+                   f"{row.meshes:>6}")
+        out += textwrap.wrap(row.drive_text(), WIDTH, initial_indent="    ",
+                             subsequent_indent="      ")
+        out += textwrap.wrap("teeth: " + row.member_teeth_text(), WIDTH,
+                             initial_indent="    ", subsequent_indent="      ")
+    return out
 
 
 def default_graphs(max_links: int = 6) -> tuple[TrainGraph, ...]:
@@ -183,22 +206,13 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
             raise UsageError(f"graph {g.name or g} has {g.dof} degrees of freedom; "
                              "synthesis needs 1-DOF graphs")
     teeth = (int(teeth[0]), int(teeth[1]))
-    items, skipped, evaluated = [], [], 0
-    for gi, graph in enumerate(graphs):
-        for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
-            if layout.size > max_grid:
-                skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
-                continue
-            evaluated += layout.size
-            items += [(graph, gi, li, start, min(layout.size, start + CHUNK), float(ratio),
-                       float(tolerance), teeth, planets)
-                      for start in range(0, layout.size, CHUNK)]
+    items = [(graph, gi, float(ratio), float(tolerance), teeth, planets, max_grid,
+              float(mesh_efficiency)) for gi, graph in enumerate(graphs)]
     with cluster(scheduler=scheduler, workers=workers) as run:
-        found = run(_search_item, items)
-        merged = _merge([h for part in found for h in part])
-        jobs = [(graphs[h.graph], h, float(ratio), teeth, planets, float(mesh_efficiency))
-                for h in merged]
-        rows = [row for row in run(_evaluate_item, jobs) if row is not None]
+        done = run(_graph_item, items)
+    rows = [row for part in done for row in part[0]]
+    skipped = [entry for part in done for entry in part[1]]
+    evaluated = sum(part[2] for part in done)
     ranked, seen = [], set()
     for row in sorted(rows, key=rank_key):
         if signature(row) not in seen:
@@ -212,25 +226,22 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped))
 
 
-def _search_item(item: tuple) -> list[Hits]:
-    graph, gi, li, start, stop, ratio, tolerance, teeth, planets = item
-    return search_range(graph, gi, li, start, stop, ratio, tolerance, teeth, planets)
-
-
-def _evaluate_item(job: tuple) -> SynthesisRow | None:
-    graph, hits, ratio, teeth, planets, mesh_efficiency = job
-    return evaluate_hits(graph, hits, ratio, teeth, planets, mesh_efficiency)
-
-
-def _merge(hits: Sequence[Hits]) -> list[Hits]:
-    """One :class:`Hits` per arrangement, chunks joined in grid order."""
-    import numpy as np
-
-    groups: dict[tuple, list[Hits]] = {}
-    for h in hits:
-        groups.setdefault((h.graph, h.layout, h.fixed, h.input, h.output), []).append(h)
-    return [Hits(*key, flat=np.concatenate([h.flat for h in group]))
-            for key, group in sorted(groups.items())]
+def _graph_item(item: tuple) -> tuple[list[SynthesisRow], list[tuple], int]:
+    """One task: every layout of one graph searched, its arrangements evaluated. The
+    graph's derivations and layouts are then made once, on the worker that uses them,
+    and only the rows travel back."""
+    graph, gi, ratio, tolerance, teeth, planets, max_grid, mesh_efficiency = item
+    hits: list[Hits] = []
+    skipped, evaluated = [], 0
+    for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
+        if layout.size > max_grid:
+            skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
+            continue
+        evaluated += layout.size
+        hits += search_part(graph, gi, li, 0, 1, ratio, tolerance, teeth, planets)
+    rows = [evaluate_hits(graph, h, ratio, teeth, planets, mesh_efficiency)
+            for h in hits]
+    return [row for row in rows if row is not None], skipped, evaluated
 
 
 def _check(ratio, tolerance, teeth, planets, mesh_efficiency, top, max_grid) -> None:

@@ -51,9 +51,11 @@ class Hits:
 
 
 @functools.lru_cache(maxsize=64)
-def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Callable], ...]:
-    """Per fixed coaxial link: ``(fixed, others, fn)`` where ``fn(i_0, ..., i_G-1)`` gives
-    the speeds of ``others`` (the other coaxial links) over the speed of ``others[0]``."""
+def speed_expressions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], tuple, tuple], ...]:
+    """Per fixed coaxial link: ``(fixed, others, symbols, expressions)``, the sympy speeds
+    of ``others`` (the other coaxial links) over the speed of ``others[0]`` in the meshes'
+    Willis ratios ``symbols`` (``i_0 .. i_G-1``): the one symbolic derivation of the
+    search, lambdified by :func:`speed_functions` and :func:`cofactor_functions`."""
     import sympy as sp
 
     from powergraph.errors import PowerGraphError
@@ -65,7 +67,7 @@ def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Call
     st = structure(graph)
     if st is None:
         return ()
-    symbols = [sp.Symbol(f"i_{k}") for k in range(len(graph.gear_pairs))]
+    symbols = tuple(sp.Symbol(f"i_{k}") for k in range(len(graph.gear_pairs)))
     out = []
     for fixed in st.coaxial:
         others = tuple(c for c in st.coaxial if c != fixed)
@@ -79,9 +81,19 @@ def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Call
             speeds = _speeds(model, elements, willis, model.body_of[f"L{others[0]}"])
         except PowerGraphError:
             continue
-        expressions = [speeds[model.body_of[f"L{c}"]] for c in others]
-        out.append((fixed, others, sp.lambdify(symbols, expressions, "numpy")))
+        expressions = tuple(speeds[model.body_of[f"L{c}"]] for c in others)
+        out.append((fixed, others, symbols, expressions))
     return tuple(out)
+
+
+@functools.lru_cache(maxsize=64)
+def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Callable], ...]:
+    """Per fixed coaxial link: ``(fixed, others, fn)`` where ``fn(i_0, ..., i_G-1)`` gives
+    the speeds of ``others`` (the other coaxial links) over the speed of ``others[0]``."""
+    import sympy as sp
+
+    return tuple((fixed, others, sp.lambdify(symbols, list(expressions), "numpy"))
+                 for fixed, others, symbols, expressions in speed_expressions(graph))
 
 
 def _speeds(model: Any, elements: Any, willis: dict, input_body: str) -> dict:
@@ -128,19 +140,18 @@ def willis_ratios(layout: Layout, teeth: dict[tuple[int, int], np.ndarray]) -> l
             for k in range(len(layout.graph.gear_pairs))]
 
 
-def search_range(graph: TrainGraph, graph_index: int, layout_index: int, start: int, stop: int,
-                 ratio: float, tolerance: float, teeth: tuple[int, int], planets: int
-                 ) -> list[Hits]:
-    """Hits of one layout over the flat grid indices ``start .. stop - 1``."""
-    layout = graph_layouts(graph, teeth, planets)[layout_index]
+def exact_hits(graph: TrainGraph, layout: Layout, flat: np.ndarray, ratio: float,
+               tolerance: float) -> dict[tuple[int, int, int], np.ndarray]:
+    """The grid points ``flat`` of ``layout`` that give ``ratio`` within ``tolerance`` and
+    meet the joint conditions, per arrangement ``(fixed, input, output)``: the exact test
+    every candidate passes, ``|w_in / w_out / ratio - 1| <= tolerance``."""
     found: dict[tuple[int, int, int], list[np.ndarray]] = {}
-    for low in range(start, stop, SUB_CHUNK):
-        flat = np.arange(low, min(stop, low + SUB_CHUNK), dtype=np.int64)
-        z = layout.teeth(flat)
-        i = willis_ratios(layout, z)
+    for low in range(0, flat.size, SUB_CHUNK):
+        part = flat[low:low + SUB_CHUNK]
+        i = willis_ratios(layout, layout.teeth(part))
         for fixed, others, fn in speed_functions(graph):
             with np.errstate(divide="ignore", invalid="ignore"):
-                w = [np.broadcast_to(np.asarray(v, dtype=float), flat.shape)
+                w = [np.broadcast_to(np.asarray(v, dtype=float), part.shape)
                      for v in fn(*i)]
                 for a, wa in zip(others, w):
                     for b, wb in zip(others, w):
@@ -148,14 +159,14 @@ def search_range(graph: TrainGraph, graph_index: int, layout_index: int, start: 
                             continue
                         hit = np.abs(wa / wb / ratio - 1.0) <= tolerance
                         if hit.any():
-                            found.setdefault((fixed, a, b), []).append(flat[hit])
-    hits = []
-    for (fixed, a, b), parts in found.items():
-        flat = np.concatenate(parts)
-        flat = flat[joint_conditions(layout, flat)]
-        if flat.size:
-            hits.append(Hits(graph_index, layout_index, fixed, a, b, flat))
-    return hits
+                            found.setdefault((fixed, a, b), []).append(part[hit])
+    out = {}
+    for key, parts in found.items():
+        hits = np.concatenate(parts)
+        hits = hits[joint_conditions(layout, hits)]
+        if hits.size:
+            out[key] = hits
+    return out
 
 
 def joint_conditions(layout: Layout, flat: np.ndarray) -> np.ndarray:

@@ -1,0 +1,132 @@
+"""The tooth-space search (branch and bound) against a plain scan of every grid point.
+
+Expected values: a brute force written here. It visits every point of every layout's
+grid (nothing pruned), takes its Willis ratios ``i = -z_b/z_a`` (external) or ``+z_b/z_a``
+(internal), the coaxial speeds from the closed forms, the ratio test
+``|w_in / w_out / R - 1| <= tol`` and the conditions joining planets. The bounded search
+must find exactly the same tooth sets, counted per layout and arrangement.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from powergraph.analyses.synthesis import synthesize_bound
+from powergraph.analyses.synthesis.synthesize import default_graphs, synthesize
+from powergraph.analyses.synthesis.synthesize_bound import (cofactor_functions, influential,
+                                                            search_part)
+from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+from powergraph.analyses.synthesis.synthesize_search import (graph_layouts, joint_conditions,
+                                                             speed_functions)
+
+
+@pytest.fixture(autouse=True)
+def always_bound(monkeypatch):
+    """Small grids are scanned whole in production (``SCAN``): here every grid is bounded,
+    and leaves are small, so the pruning is what is tested."""
+    monkeypatch.setattr(synthesize_bound, "SCAN", 0)
+    monkeypatch.setattr(synthesize_bound, "LEAF", 4)
+
+
+def brute_force(graph, ratio, tolerance, teeth, planets) -> dict:
+    """``{(layout, fixed, input, output): sorted grid indices}`` of every hit."""
+    out = {}
+    for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
+        flat = np.arange(layout.size)
+        z = layout.teeth(flat)
+        i = [(1.0 if k in layout.internal else -1.0) * z[(k, 1)] / z[(k, 0)]
+             for k in range(len(graph.gear_pairs))]
+        for fixed, others, fn in speed_functions(graph):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                w = [np.broadcast_to(np.asarray(v, dtype=float), flat.shape) for v in fn(*i)]
+            for a, wa in zip(others, w):
+                for b, wb in zip(others, w):
+                    if a == b:
+                        continue
+                    with np.errstate(divide="ignore", invalid="ignore"):
+                        hit = flat[np.abs(wa / wb / ratio - 1.0) <= tolerance]
+                    hit = hit[joint_conditions(layout, hit)]
+                    if hit.size:
+                        out[(li, fixed, a, b)] = hit
+    return out
+
+
+def bounded(graph, ratio, tolerance, teeth, planets, parts: int = 1) -> dict:
+    out: dict = {}
+    for li, _ in enumerate(graph_layouts(graph, teeth, planets)):
+        for part in range(parts):
+            for h in search_part(graph, 0, li, part, parts, ratio, tolerance, teeth, planets):
+                key = (li, h.fixed, h.input, h.output)
+                out[key] = np.sort(np.concatenate([out.get(key, h.flat[:0]), h.flat]))
+    return out
+
+
+def assert_same(expected: dict, found: dict) -> None:
+    assert sorted(found) == sorted(expected)
+    for key, flat in expected.items():
+        np.testing.assert_array_equal(found[key], flat)
+
+
+@pytest.mark.parametrize("name, ratio, tolerance, teeth", [
+    ("2K-H", 4.0, 0.01, (12, 60)),
+    ("2K-H", -3.0, 0.01, (12, 60)),
+    ("2K-H", 12.0, 0.005, (12, 40)),          # stepped planets only
+    ("double planet", 2.5, 0.01, (12, 40)),
+    ("Wolfrom 3K", 60.0, 0.01, (12, 60)),
+    ("Wolfrom 3K", -30.0, 0.01, (12, 60)),
+    ("RV (2K-H + K-H-V)", 80.0, 0.01, (12, 40)),
+])
+def test_bounded_search_finds_exactly_the_brute_force_hits(name, ratio, tolerance, teeth):
+    graph = CLASSICS[name]
+    expected = brute_force(graph, ratio, tolerance, teeth, 3)
+    assert expected, "a case without hits would not test anything"
+    assert_same(expected, bounded(graph, ratio, tolerance, teeth, 3))
+
+
+def test_parts_of_a_layout_together_find_the_same_hits() -> None:
+    graph = CLASSICS["Wolfrom 3K"]
+    expected = brute_force(graph, 20.0, 0.01, (12, 60), 3)
+    assert expected
+    assert_same(expected, bounded(graph, 20.0, 0.01, (12, 60), 3, parts=5))
+
+
+@pytest.mark.slow
+def test_ravigneaux_matches_the_brute_force() -> None:
+    # one layout of 6.5e6 points: the plain scan takes seconds
+    graph = CLASSICS["Ravigneaux"]
+    expected = brute_force(graph, -30.0, 0.01, (12, 36), 3)
+    assert sum(v.size for v in expected.values()) > 100
+    assert_same(expected, bounded(graph, -30.0, 0.01, (12, 36), 3))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [7.0, -20.0, 45.0])
+def test_every_five_link_graph_matches_the_brute_force(ratio) -> None:
+    graphs = [g for g in default_graphs(5) if g.links == 5]
+    total = 0
+    for graph in graphs:
+        expected = brute_force(graph, ratio, 0.01, (12, 30), 3)
+        assert_same(expected, bounded(graph, ratio, 0.01, (12, 30), 3))
+        total += sum(v.size for v in expected.values())
+    assert total > 0
+
+
+def test_cofactors_are_multilinear_so_the_bounds_apply() -> None:
+    # Every speed is P_c / P_0 with each Willis ratio of degree at most one (Cramer's rule
+    # on rows each linear in one ratio); without it the search could not prune.
+    for graph in default_graphs(5):
+        assert all(fn is not None for *_, fn in cofactor_functions(graph)), graph.name
+
+
+def test_an_idle_planet_moves_no_ratio() -> None:
+    # 5-link d-graph 2: planet 4 meshes only planet 3 (an idler): its teeth enter no speed.
+    graph = next(g for g in default_graphs(5) if g.name.startswith("5-link d-graph 2 "))
+    layout = graph_layouts(graph, (12, 30), 3)[0]
+    moving = influential(graph, 0, (12, 30), 3)
+    idle = [f for f, b in enumerate(layout.blocks) if b.planet == 4]
+    assert idle and not moving[idle].any() and moving.sum() == len(moving) - 1
+
+
+def test_search_reports_no_layout_skipped_by_default() -> None:
+    result = synthesize(121, graphs=[CLASSICS["Wolfrom 3K"]], top=1)
+    assert result.skipped == () and result.feasible > 0
