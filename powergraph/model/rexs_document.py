@@ -158,11 +158,12 @@ def _xml_component(element: ET.Element, what: str, source: str) -> RexsComponent
 
 def _from_json(data: bytes, source: str) -> RexsDocument:
     def unique(pairs):
-        keys = [k for k, _ in pairs]
-        repeated = next((k for k in keys if keys.count(k) > 1), None)
-        if repeated is not None:
+        out = dict(pairs)
+        if len(out) < len(pairs):
+            seen: set = set()
+            repeated = next(k for k, _ in pairs if k in seen or seen.add(k))
             raise ModelError(f"JSON key {repeated!r} given twice in one object", source)
-        return dict(pairs)
+        return out
 
     try:
         top = json.loads(data.decode("utf-8"), object_pairs_hook=unique)
@@ -170,6 +171,10 @@ def _from_json(data: bytes, source: str) -> RexsDocument:
         where = (f" (line {exc.lineno}, column {exc.colno})"
                  if isinstance(exc, json.JSONDecodeError) else "")
         raise ModelError(f"not valid JSON{where}", source) from None
+    except ModelError:
+        raise
+    except ValueError:         # an integer of more digits than Python converts
+        raise ModelError("not valid JSON: a number of thousands of digits", source) from None
     model = top.get("model") if isinstance(top, dict) else None
     if not isinstance(model, dict) or "version" not in model:
         raise ModelError("not a REXS file: expected a JSON object {\"model\": {\"version\": "

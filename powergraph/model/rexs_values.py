@@ -18,6 +18,7 @@ from typing import Any
 
 from powergraph.errors import ModelError
 from powergraph.model.rexs_document import RexsDocument
+from powergraph.model.yaml_loader import brief
 
 #: Units of the attributes read, without spaces: unit -> factor to the model's unit
 #: (mm, degrees, rpm, N·m, fraction, cSt, kg/m³).
@@ -71,9 +72,9 @@ class AttributeReader:
         try:
             number = float(raw)
         except (TypeError, ValueError):
-            raise self.error(f"{where}: {raw!r} is not a number") from None
+            raise self.error(f"{where}: {brief(raw)} is not a number") from None
         if not math.isfinite(number):
-            raise self.error(f"{where}: {raw!r} is not a finite number")
+            raise self.error(f"{where}: {brief(raw)} is not a finite number")
         return number * factors[key]
 
     def flag(self, ident: int, attribute: str, default: bool) -> bool:

@@ -130,6 +130,8 @@ def test_load_model_reads_rexs_by_suffix(tmp_path: Path) -> None:
     ('{"model": {"version": "1.4", "components": [', "not valid JSON"),
     ('{"gearbox": {}}', "not a REXS file"),
     ("<!DOCTYPE m [<!ENTITY a 'aaaa'>]><model version='1.4'/>", "entity declarations"),
+    ('{"model": {"version": "1.4", "version": "1.5"}}', "JSON key 'version' given twice"),
+    ('{"model": {"version": ' + "9" * 5000 + "}}", "a number of thousands of digits"),
 ])
 def test_bad_files_are_one_model_error(tmp_path: Path, text: str, message: str) -> None:
     path = tmp_path / "bad.rexs"
@@ -170,3 +172,16 @@ def test_a_model_read_straight_from_rexs_warns_that_its_meshes_are_ideal(tmp_pat
     again = pg.load_model(exported)
     assert "rexs-ideal-meshes" not in [w.code for w in again.warnings]
     assert pg.solve(again).efficiency == pytest.approx(0.98 ** 2, rel=1e-12)
+
+
+def test_a_huge_value_is_named_briefly(tmp_path: Path) -> None:
+    """A tooth number of 5,000 digits: refused in one short line, not echoed whole."""
+    text = HELICAL.read_text(encoding="utf-8")
+    start = text.index('<attribute id="number_of_teeth"')
+    start = text.index(">", start) + 1
+    end = text.index("<", start)
+    path = tmp_path / "huge.rexs"
+    path.write_text(text[:start] + "9" * 5000 + text[end:], encoding="utf-8")
+    with pytest.raises(ModelError, match="is not a finite number") as info:
+        read_rexs(path)
+    assert len(str(info.value)) < 300
