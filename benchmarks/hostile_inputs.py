@@ -61,7 +61,7 @@ sys.path[:0] = [str(ROOT), str(ROOT / "benchmarks"), str(ROOT / "tests" / "cli")
 from hostile_mutations import CLASSES, _fast, mutate  # noqa: E402
 from hostile_tables import (DIRECTORY, MISSING, TABLE_CLASSES, Bundle,  # noqa: E402
                             eligible, make_bundle, plain_points, to_csv)
-from test_common import NOT_NUMBERS, NUMERIC_OPTIONS, WRITERS  # noqa: E402
+from test_common import NAMES, NOT_NUMBERS, NUMERIC_OPTIONS, WRITERS  # noqa: E402
 
 from powergraph.cli.main import main  # noqa: E402
 
@@ -168,8 +168,7 @@ def check_file(task: tuple) -> list[tuple]:
                             " ".join(full)[:200]))
             argv, option, what = rng.choice(WRITERS)
             bad = rng.choice([f"{out}/missing/dir/x", out])
-            bad += {"figure": ".png", "file": ".csv", "model": ".yaml",
-                    "folder": ""}[what] if bad != out else ""
+            bad += Path(NAMES[what]).suffix if bad != out else ""
             if what == "folder" and bad == out:
                 Path(out, "afile").write_text("x")
                 bad = f"{out}/afile"
