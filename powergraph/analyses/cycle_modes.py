@@ -5,8 +5,9 @@ A mode whose freewheels do not depend on the load has one plain train for every 
 (:attr:`powergraph.statics.case.TrainCase.gear_model`: its clutches and brakes as the mode
 says): its rows go through that train's compiled sweep at once, as a plain train's cycle
 does (:func:`~powergraph.analyses.cycle_rows.sweep_rows`). A mode whose freewheels are
-decided at each load, a train with machines, friction laws or bearing losses, and any row
-the sweep does not solve go row by row through the case
+decided at each load, a mode that leaves a port inactive, a train with machines, friction
+laws or bearing losses, a row with an empty cell and any row the sweep does not solve go
+row by row through the case
 (:func:`~powergraph.analyses.cycle_rows.single_row`). Without ``keep_going`` the first row
 in file order that cannot be solved is the error, whichever group it was in.
 
@@ -74,8 +75,8 @@ def _swept(base: Model, mode: str, points: Points, rows: np.ndarray,
     from powergraph.analyses.sweep import CompiledSweep
 
     gear = TrainCase.of(base, mode).gear_model
-    if gear is None or gear.buses or loss_block_places(gear):
-        return rows
+    if gear is None or gear.buses or gear.inactive or loss_block_places(gear):
+        return rows          # one by one: each row's own case (an inactive port refused)
     paths = [path for path, _, _ in points.columns]
     try:
         evaluate = CompiledSweep(gear, paths)
