@@ -33,7 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from powergraph.exchange.rexs_import import (ideal_meshes, import_rexs, model_yaml,
                                                  points_csv)
-    from powergraph.model.rexs_reader import is_rexs_path
+    from powergraph.model.input_files import is_rexs_path
 
     target = check_output_file(args.output, "-o", (".yaml", ".yml"))
     points = check_output_file(args.points, "--points", (".csv",)) if args.points else None

@@ -6,6 +6,7 @@ from pathlib import Path
 from typing import Any
 
 from powergraph.model.graph import to_networkx
+from powergraph.model.input_files import is_rexs_path
 from powergraph.model.spec import Body, Component, Link, Model, Port
 from powergraph.model.validate import model_from_dict
 from powergraph.model.yaml_loader import load_yaml_file, load_yaml_text
@@ -39,10 +40,10 @@ def load_model(path: str | Path) -> Model:
     >>> model.name                                   # doctest: +SKIP
     'RV-40E'
     """
-    from powergraph.model.rexs_reader import is_rexs_path, read_rexs, rexs_caveats
-
     if not is_rexs_path(path):
         return model_from_dict(load_yaml_file(path), source=str(path))
+    from powergraph.model.rexs_reader import read_rexs, rexs_caveats
+
     imported = read_rexs(path)
     model = model_from_dict(imported.data, source=str(path))
     return dataclasses.replace(model, warnings=model.warnings + rexs_caveats(imported))
@@ -51,9 +52,9 @@ def load_model(path: str | Path) -> Model:
 def load_model_data(path: str | Path) -> Any:
     """The plain data of a model file (as YAML gives it), before validation: a REXS file
     (``.rexs``, ``.rexsj``) through :func:`powergraph.model.rexs_reader.read_rexs`."""
-    from powergraph.model.rexs_reader import is_rexs_path, read_rexs
-
     if is_rexs_path(path):
+        from powergraph.model.rexs_reader import read_rexs
+
         return read_rexs(path).data
     return load_yaml_file(path)
 

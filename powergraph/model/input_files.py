@@ -189,3 +189,16 @@ def read_table_text(path: str | Path, what: str) -> str:
     """The text of a table file (a points CSV, an efficiency map), bounded and decoded as
     :func:`decode_text` says."""
     return decode_text(read_bytes(path, "table", what), str(path))
+
+
+#: The file names read as REXS gear units (docs/exchange.md) wherever a model is taken.
+REXS_SUFFIXES = (".rexs", ".rexsj")
+
+
+def is_rexs_path(path: str | Path) -> bool:
+    """True for a ``.rexs`` or ``.rexsj`` file name.
+
+    >>> is_rexs_path("unit.REXS"), is_rexs_path("unit.yaml")
+    (True, False)
+    """
+    return Path(path).suffix.lower() in REXS_SUFFIXES

@@ -31,11 +31,11 @@ from typing import Any
 from powergraph.errors import Caveat
 from powergraph.model.rexs_document import RexsDocument, parse_rexs
 from powergraph.model.rexs_values import AttributeReader
+from powergraph.model.input_files import REXS_SUFFIXES, is_rexs_path  # noqa: F401
 from powergraph.model.yaml_loader import read_model_bytes
 from powergraph.records import record
 
 #: File suffixes read as REXS wherever a model path is taken.
-REXS_SUFFIXES = (".rexs", ".rexsj")
 #: How long the load spectrum lasts in the duty-cycle points: fractions of one hour.
 SPECTRUM_SECONDS = 3600.0
 _BEARING_ROLES = ("inner_part", "outer_part")
@@ -74,15 +74,6 @@ def rexs_caveats(imported: RexsImport) -> tuple[Caveat, ...]:
         out.append(Caveat(f"not read from the REXS file: {'; '.join(imported.unmapped)}",
                           None, "rexs-not-mapped"))
     return tuple(out)
-
-
-def is_rexs_path(path: str | Path) -> bool:
-    """True for a ``.rexs`` or ``.rexsj`` file name.
-
-    >>> is_rexs_path("unit.REXS"), is_rexs_path("unit.yaml")
-    (True, False)
-    """
-    return Path(path).suffix.lower() in REXS_SUFFIXES
 
 
 def read_rexs(path: str | Path, mesh_efficiency: float | None = None) -> RexsImport:
