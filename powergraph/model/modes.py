@@ -102,6 +102,25 @@ def resolve(model: Model, mode: str | None,
     return derived
 
 
+def default_state(model: Model) -> Model:
+    """A loaded model with modes as its solve takes it: the first mode (its operating
+    point, its idle members held) with the freewheels as loaded, still marked not
+    resolved, so that its solve warns ``default-state`` (docs/modes.md).
+
+    Examples
+    --------
+    >>> from powergraph.model import load_model
+    >>> m = default_state(load_model("models/honda_immd.yaml"))
+    >>> m.mode, sorted(m.inactive), m.resolved
+    ('engine drive', [1], False)
+    """
+    holding = {e.name: model.links[e.index].type == "fixed" for e in model.shift_elements
+               if e.kind == "freewheel"}
+    resolved = resolve(model, next(iter(model.modes)), holding)
+    return dataclasses.replace(resolved, resolved=False, name=model.name,
+                               point_of=resolved.point_of or resolved.mode)
+
+
 def idle_components(model: Model, links, bodies, body_of: Mapping[str, str]) -> set[str]:
     """The components joined to no active port and not to the frame (docs/modes.md):
     the bodies of ``links`` (meshes joining their two gears and carrier — a pair the frame

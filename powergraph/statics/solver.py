@@ -13,7 +13,7 @@ from typing import Mapping
 import numpy as np
 
 from powergraph.kinematics import Element, Kinematics, element_stencil, elements_of, solve_speeds
-from powergraph.model.mode_specs import at_mode_point
+from powergraph.model.modes import default_state
 from powergraph.model.spec import Model
 from powergraph.statics.loss_sources import torque_sources
 from powergraph.model.validate import check_port_ranges
@@ -73,8 +73,8 @@ def solve(model: Model, speeds: Mapping[str, float] | None = None,
     """
     if model.modes and not model.resolved and model.point_of is None:
         # a loaded model in its default state, the first mode: at that mode's point too
-        # (its inactive ports carrying nothing, the ports and buses it sets)
-        model = at_mode_point(model, next(iter(model.modes)))
+        # (its inactive ports carrying nothing, the ports and buses it sets, idle members)
+        model = default_state(model)
     if extra_torques is None:
         check_port_ranges(model, speeds)
     if model.thermal is not None and extra_torques is None:

@@ -270,3 +270,24 @@ def test_a_mode_that_leaves_an_active_port_loose_is_still_a_dof_error() -> None:
     data["modes"]["drive"] = {"engage": []}           # the PTO active on a loose shaft
     with pytest.raises(ModelError, match=r"modes\.drive: engages nothing: leaves 2 DOF"):
         TrainCase.of(model_from_dict(data), "drive").point()
+
+
+def test_the_loaded_model_solves_its_first_mode_even_one_with_idle_members() -> None:
+    """The Volt with one-motor EV listed first: ``powergraph.solve`` of the file as
+    loaded solves that mode (the engine and MG-A inactive, their shafts idle), as
+    ``solve --mode 'one-motor EV'`` does, and warns ``default-state``."""
+    import yaml
+
+    import powergraph as pg
+
+    data = yaml.safe_load(VOLT.read_text())
+    modes = data["modes"]
+    data["modes"] = {"one-motor EV": modes.pop("one-motor EV"), **modes}
+    model = model_from_dict(data)
+    result = pg.solve(model)
+    assert_conservation(result)
+    assert result.model.idle == {"A", "E"}
+    assert "default-state" in [w.code for w in result.warnings]
+    expected = TrainCase.of(model, "one-motor EV").point().result
+    assert result.efficiency == pytest.approx(expected.efficiency, rel=1e-12)
+    assert result.total_loss == pytest.approx(expected.total_loss, rel=1e-12)
