@@ -16,8 +16,8 @@ from powergraph.analyses.synthesis.synthesize import default_graphs, synthesize
 from powergraph.analyses.synthesis.synthesize_bound import (cofactor_functions, influential,
                                                             search_part)
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
-from powergraph.analyses.synthesis.synthesize_search import (graph_layouts, joint_conditions,
-                                                             speed_functions)
+from powergraph.analyses.synthesis.synthesize_search import (drivable, graph_layouts,
+                                                             joint_conditions, speed_functions)
 
 
 @pytest.fixture(autouse=True)
@@ -28,8 +28,9 @@ def always_bound(monkeypatch):
     monkeypatch.setattr(synthesize_bound, "LEAF", 4)
 
 
-def brute_force(graph, ratio, tolerance, teeth, planets) -> dict:
-    """``{(layout, fixed, input, output): sorted grid indices}`` of every hit."""
+def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> dict:
+    """``{(layout, fixed, input, output): sorted grid indices}`` of every hit (``rank``:
+    only where the train can be driven at its input, :func:`regular`)."""
     out = {}
     for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
         flat = np.arange(layout.size)
@@ -46,9 +47,28 @@ def brute_force(graph, ratio, tolerance, teeth, planets) -> dict:
                     with np.errstate(divide="ignore", invalid="ignore"):
                         hit = flat[np.abs(wa / wb / ratio - 1.0) <= tolerance]
                     hit = hit[joint_conditions(layout, hit)]
+                    if rank:
+                        hit = hit[[regular(graph, [x[j] for x in i], fixed, a) for j in hit]]
                     if hit.size:
                         out[(li, fixed, a, b)] = hit
     return out
+
+
+def regular(graph, ratios, fixed, given) -> bool:
+    """The train with ``fixed`` held and ``given`` driven has one speed per link: its
+    rows ``(w_u - w_c) - i (w_v - w_c) = 0`` (``w_u - w_v = 0`` per coupling), over the
+    links other than those two, have full rank (numpy's SVD rank)."""
+    unknown = [n for n in range(graph.links) if n not in (fixed, given)]
+    rows = []
+    for (u, v, c), i in zip(graph.gear_pairs, ratios):
+        row = dict.fromkeys(range(graph.links), 0.0)
+        row[u] += 1.0
+        row[v] -= i
+        row[c] += i - 1.0
+        rows.append([row[n] for n in unknown])
+    for u, v in graph.couplings:
+        rows.append([1.0 if n == u else -1.0 if n == v else 0.0 for n in unknown])
+    return np.linalg.matrix_rank(np.array(rows)) == len(unknown)
 
 
 def bounded(graph, ratio, tolerance, teeth, planets, parts: int = 1) -> dict:
@@ -109,6 +129,42 @@ def test_every_five_link_graph_matches_the_brute_force(ratio) -> None:
         assert_same(expected, bounded(graph, ratio, 0.01, (12, 30), 3))
         total += sum(v.size for v in expected.values())
     assert total > 0
+
+
+TWO_STAGES_LOCKED = [np.array([1 / 3]), np.array([-1.0]), np.array([-1.0]), np.array([-1.0])]
+
+
+def test_a_locked_stage_is_not_drivable() -> None:
+    """The rows of the set below are singular (docstring of the next test); halving the
+    second stage's ratios (steps 24 and 12 teeth against suns of 12) makes them regular."""
+    graph = CLASSICS["two 2K-H stages"]
+    assert not drivable(graph, TWO_STAGES_LOCKED, 0, 1)[0]
+    assert not regular(graph, [x[0] for x in TWO_STAGES_LOCKED], 0, 1)
+    moving = [np.array([1 / 3]), np.array([-1.0]), np.array([-0.5]), np.array([-0.5])]
+    assert drivable(graph, moving, 0, 1)[0] and regular(graph, [x[0] for x in moving], 0, 1)
+
+
+@pytest.mark.slow
+def test_tooth_sets_that_lock_a_stage_are_no_trains() -> None:
+    """Two 2K-H stages, the second with a stepped planet meshing two suns (links 3 and 0,
+    carrier 5). Its rows give ``w_3 - w_5 = i_2 i_3 (w_0 - w_5)``; with equal suns and
+    steps, ``i_2 = i_3 = -1`` so ``w_3 = w_0``: holding link 0 holds carrier 3 of the first
+    stage, whose ring is link 0 too, so sun 1 cannot be driven. The simplified closed
+    forms still give a finite ratio there (they cancel the common factor); the search
+    must leave these sets out, as the brute force above does (the rank of the rows)."""
+    graph = CLASSICS["two 2K-H stages"]
+    expected = brute_force(graph, 5.0, 0.005, (12, 20), 3)
+    with_locked = brute_force(graph, 5.0, 0.005, (12, 20), 3, rank=False)
+    assert sum(v.size for v in with_locked.values()) > sum(v.size for v in expected.values())
+    assert_same(expected, bounded(graph, 5.0, 0.005, (12, 20), 3))
+
+
+@pytest.mark.slow
+def test_synthesis_runs_where_an_arrangements_first_set_locks() -> None:
+    # Before the test above was met, a model was built of each arrangement's first hit,
+    # a locked one here, and the synthesis stopped on the error.
+    result = synthesize(40, graphs=[CLASSICS["two 2K-H stages"]], teeth=(12, 60), top=None)
+    assert result.rows
 
 
 def test_cofactors_are_multilinear_so_the_bounds_apply() -> None:

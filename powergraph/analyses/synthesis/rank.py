@@ -121,8 +121,8 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
     model = model_from_dict(doc)
     paths = [f"components.{g}.teeth" for g in teeth]
     values = {f"components.{g}.teeth": v for g, v in teeth.items()}
-    forward = compile_sweep(model, paths, backend="numeric")(values)
-    back = compile_sweep(backdriven(model), paths, backend="numeric")(values)
+    forward = compile_sweep(model, paths, backend="numeric")(values, quiet=True)
+    back = compile_sweep(backdriven(model), paths, backend="numeric")(values, quiet=True)
     pv = _max_virtual_power(forward, mesh_efficiency)
     back_eff = np.where(back.converged, back.efficiency, -np.inf)
     eff = np.where(forward.converged, forward.efficiency, -np.inf)

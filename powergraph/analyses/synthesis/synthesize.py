@@ -5,10 +5,10 @@ For each graph (the enumeration up to ``max_links`` links, or the classic trains
 (:mod:`~powergraph.analyses.synthesis.teeth`), every choice of fixed link, input and output
 among the coaxial links is searched at once over the layout's tooth space by bounds on the
 ratio (:mod:`~powergraph.analyses.synthesis.synthesize_bound`); the feasible tooth sets are
-evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). One task per
-graph (search and evaluation, so each graph's derivations are made once, where they are
-used) is mapped with :func:`powergraph.analyses.parallel.cluster` (in process, on local
-worker processes, or on a Dask cluster); only rows travel back. docs/synthesis.md.
+evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). The search
+and the evaluation are mapped with :func:`powergraph.analyses.parallel.cluster` (in process, on local
+worker processes, or on a Dask cluster) as units of work, largest first
+(:mod:`~powergraph.analyses.synthesis.tasks`); only rows travel back. docs/synthesis.md.
 
 Examples
 --------
@@ -25,10 +25,9 @@ from typing import Any, Iterable, Sequence
 
 from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
-from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits, rank_key, signature
+from powergraph.analyses.synthesis.rank import SynthesisRow, rank_key, signature
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
-from powergraph.analyses.synthesis.synthesize_bound import search_part
-from powergraph.analyses.synthesis.synthesize_search import Hits, graph_layouts
+from powergraph.analyses.synthesis.tasks import SURVEY_BATCH, run_unit, survey, work_units
 from powergraph.errors import UsageError
 from powergraph.records import record
 from powergraph.display import Displayed
@@ -206,13 +205,17 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
             raise UsageError(f"graph {g.name or g} has {g.dof} degrees of freedom; "
                              "synthesis needs 1-DOF graphs")
     teeth = (int(teeth[0]), int(teeth[1]))
-    items = [(graph, gi, float(ratio), float(tolerance), teeth, planets, max_grid,
-              float(mesh_efficiency)) for gi, graph in enumerate(graphs)]
+    batches = [[(g, gi) for gi, g in enumerate(graphs)][i:i + SURVEY_BATCH]
+               for i in range(0, len(graphs), SURVEY_BATCH)]
     with cluster(scheduler=scheduler, workers=workers) as run:
-        done = run(_graph_item, items)
-    rows = [row for part in done for row in part[0]]
-    skipped = [entry for part in done for entry in part[1]]
-    evaluated = sum(part[2] for part in done)
+        surveys = [s for part in run(_survey, [(b, teeth, planets, max_grid) for b in batches])
+                   for s in part]
+        units = work_units(surveys)
+        done = run(run_unit, [(graphs[gi], gi, layouts, float(ratio), float(tolerance), teeth,
+                               planets, float(mesh_efficiency)) for gi, layouts, _ in units])
+    rows = [row for part in done for row in part]
+    skipped = [entry for _, part in surveys for entry in part]
+    evaluated = sum(size for searched, _ in surveys for _, size in searched)
     ranked, seen = [], set()
     for row in sorted(rows, key=rank_key):
         if signature(row) not in seen:
@@ -226,22 +229,9 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped))
 
 
-def _graph_item(item: tuple) -> tuple[list[SynthesisRow], list[tuple], int]:
-    """One task: every layout of one graph searched, its arrangements evaluated. The
-    graph's derivations and layouts are then made once, on the worker that uses them,
-    and only the rows travel back."""
-    graph, gi, ratio, tolerance, teeth, planets, max_grid, mesh_efficiency = item
-    hits: list[Hits] = []
-    skipped, evaluated = [], 0
-    for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
-        if layout.size > max_grid:
-            skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
-            continue
-        evaluated += layout.size
-        hits += search_part(graph, gi, li, 0, 1, ratio, tolerance, teeth, planets)
-    rows = [evaluate_hits(graph, h, ratio, teeth, planets, mesh_efficiency)
-            for h in hits]
-    return [row for row in rows if row is not None], skipped, evaluated
+def _survey(item: tuple) -> list:
+    """:func:`~powergraph.analyses.synthesis.tasks.survey` of one batch (one task)."""
+    return survey(*item)
 
 
 def _check(ratio, tolerance, teeth, planets, mesh_efficiency, top, max_grid) -> None:

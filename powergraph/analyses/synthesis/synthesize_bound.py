@@ -48,7 +48,7 @@ LEAF = 64
 #: Layouts of at most this many grid points are scanned whole (bounding would cost more).
 SCAN = 1 << 18
 #: Nodes bounded at once (bounds the memory of a search).
-BATCH = 1 << 14
+BATCH = 1 << 11
 #: Relative slack of the bound test (rounding of the two evaluations of the ratio).
 SLACK = 1e-6
 

@@ -34,7 +34,7 @@ from powergraph.gears.planetary import assembles, planets_meet, relative_turns
 from powergraph.records import record
 
 #: Grid points evaluated at once (bounds the memory of a search).
-SUB_CHUNK = 1 << 17
+SUB_CHUNK = 1 << 14
 
 
 @record
@@ -159,6 +159,8 @@ def exact_hits(graph: TrainGraph, layout: Layout, flat: np.ndarray, ratio: float
                             continue
                         hit = np.abs(wa / wb / ratio - 1.0) <= tolerance
                         if hit.any():
+                            hit[hit] = drivable(layout.graph, [x[hit] for x in i], fixed, a)
+                        if hit.any():
                             found.setdefault((fixed, a, b), []).append(part[hit])
     out = {}
     for key, parts in found.items():
@@ -167,6 +169,47 @@ def exact_hits(graph: TrainGraph, layout: Layout, flat: np.ndarray, ratio: float
         if hits.size:
             out[key] = hits
     return out
+
+
+#: A speed system is taken as singular where its determinant is below this fraction of
+#: Hadamard's bound (the product of its rows' norms): tooth numbers are whole, so a
+#: singular system is singular exactly and its computed determinant is round-off.
+SINGULAR = 1e-9
+
+
+def drivable(graph: TrainGraph, ratios: list[np.ndarray], fixed: int, given: int
+             ) -> np.ndarray:
+    """Where the train, ``fixed`` held, can be driven at link ``given``: its Willis rows
+    ``(w_u - w_c) - i_k (w_v - w_c) = 0`` (and ``w_u = w_v`` per coupling) fix every other
+    link's speed from ``w_given``, i.e. their matrix over the other links is regular.
+
+    The closed forms of :func:`speed_expressions` are simplified, so at a tooth set where
+    the rows are singular they may still give a finite ratio (a removable singularity):
+    for instance two meshes on one carrier that force the input to stand still. Such a
+    set is no train of that ratio; every hit passes this test.
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> ratios = [np.array([-2.0, -2.0]), np.array([4.0, 4.0])]   # sun 1, ring 0, carrier 3
+    >>> drivable(CLASSICS["2K-H"], ratios, 0, 1).tolist()
+    [True, True]
+    """
+    unknown = [n for n in range(graph.links) if n not in (fixed, given)]
+    column = {n: j for j, n in enumerate(unknown)}
+    points = ratios[0].shape[0] if ratios else 0
+    rows = len(graph.gear_pairs) + len(graph.couplings)
+    if rows != len(unknown):
+        return np.zeros(points, dtype=bool)
+    matrix = np.zeros((points, rows, len(unknown)))
+    for k, (u, v, c) in enumerate(graph.gear_pairs):
+        for link, coefficient in ((u, 1.0), (v, -ratios[k]), (c, ratios[k] - 1.0)):
+            if link in column:
+                matrix[:, k, column[link]] += coefficient
+    for r, (u, v) in enumerate(graph.couplings, start=len(graph.gear_pairs)):
+        for link, coefficient in ((u, 1.0), (v, -1.0)):
+            if link in column:
+                matrix[:, r, column[link]] += coefficient
+    bound = np.prod(np.linalg.norm(matrix, axis=2), axis=1)
+    return np.abs(np.linalg.det(matrix)) > SINGULAR * bound
 
 
 def joint_conditions(layout: Layout, flat: np.ndarray) -> np.ndarray:

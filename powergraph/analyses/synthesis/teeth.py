@@ -249,14 +249,35 @@ def layouts(graph: TrainGraph, teeth: tuple[int, int] = (12, 120), planets: int 
     out = []
     for combo in itertools.product(*per_planet):
         blocks = tuple(PlanetBlock(p, steps, cp, rings,
-                                   _tuples(steps, cp, rings, teeth, planets,
-                                           alone=not any(st.kinds[k] == "pp" for k in steps[0]),
-                                           phased=st.phased(p)))
+                                   block_rows(steps, cp, rings, teeth, planets,
+                                              alone=not any(st.kinds[k] == "pp"
+                                                            for k in steps[0]),
+                                              phased=st.phased(p)))
                        for p, steps, cp, rings in combo)
         name = "+".join("stepped" if len(b.steps) > 1 else "simple" for b in blocks) or (
             "cycloid" if khv else "-")
         out.append(Layout(name, graph, st, blocks, khv, teeth, planets))
     return out
+
+
+def block_rows(steps, cp, rings, teeth: tuple[int, int], planets: int, alone: bool,
+               phased: bool) -> np.ndarray:
+    """:func:`_tuples` of a planet block, its gear pairs renamed ``0, 1, ...`` (its cp
+    pairs in order, then its planet-planet pairs): the rows depend on which pair is on
+    which step and which is a ring, not on the pairs' numbers in the graph, so blocks of
+    one shape in different graphs share one cached grid.
+
+    >>> a = block_rows(((3,), (5,)), (3, 5), frozenset({5}), (12, 40), 3, True, False)
+    >>> b = block_rows(((0,), (1,)), (0, 1), frozenset({1}), (12, 40), 3, True, False)
+    >>> a is b
+    True
+    """
+    local = {k: i for i, k in enumerate(cp)}
+    for k in steps[0] if steps else ():
+        local.setdefault(k, len(local))
+    return _tuples(tuple(tuple(local[k] for k in step) for step in steps),
+                   tuple(local[k] for k in cp), frozenset(local[k] for k in rings),
+                   teeth, planets, alone, phased)
 
 
 @functools.lru_cache(maxsize=256)
