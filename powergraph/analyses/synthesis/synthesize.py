@@ -6,9 +6,10 @@ For each graph (the enumeration up to ``max_links`` links, or the classic trains
 among the coaxial links is searched at once over the layout's tooth space by bounds on the
 ratio (:mod:`~powergraph.analyses.synthesis.synthesize_bound`); the feasible tooth sets are
 evaluated vectorised and ranked (:mod:`~powergraph.analyses.synthesis.rank`). The search
-and the evaluation are mapped with :func:`powergraph.analyses.parallel.cluster` (in process, on local
-worker processes, or on a Dask cluster) as units of work, largest first
-(:mod:`~powergraph.analyses.synthesis.tasks`); only rows travel back. docs/synthesis.md.
+and the evaluation are mapped with :func:`powergraph.analyses.parallel.cluster` (in
+process, on local worker processes, or on a Dask cluster) as units of work, largest
+first (:mod:`~powergraph.analyses.synthesis.tasks`); only rows travel back.
+docs/synthesis.md.
 
 Examples
 --------
