@@ -349,3 +349,20 @@ def test_dask_local_cluster_matches_the_single_process_run() -> None:
     spread = synthesize(121, graphs=graphs, top=None, workers=2)
     assert spread.to_dict() == alone.to_dict()
     assert len(alone) >= 1 and alone.feasible > 1
+
+
+def test_largest_virtual_power_of_a_set_without_input_power_is_nan() -> None:
+    """Mesh losses 2 W and 1 W at η = 0.98 pass 100 W and 50 W of virtual power: over an
+    input of 400 W the largest is 0.25. A set taking no input power has no such figure
+    (NaN, with no warning: the command line turns warnings into errors)."""
+    import types
+    import warnings
+
+    from powergraph.analyses.synthesis.rank import _max_virtual_power
+
+    result = types.SimpleNamespace(shape=(2,), input_power=np.array([400.0, 0.0]),
+                                   losses={0: np.array([2.0, 0.0]), 1: np.array([1.0, 0.0])})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ratio = _max_virtual_power(result, 0.98)
+    assert ratio[0] == pytest.approx(0.25) and np.isnan(ratio[1])

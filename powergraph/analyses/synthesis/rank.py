@@ -181,11 +181,14 @@ def _idle(result, mesh_efficiency: float, meshes: int) -> np.ndarray:
 
 
 def _max_virtual_power(result, mesh_efficiency: float) -> np.ndarray:
-    """Largest mesh virtual power over input power (NaN when the meshes are ideal)."""
+    """Largest mesh virtual power over input power (NaN when the meshes are ideal, and
+    for a set that takes no input power: one the ranking leaves out as idle)."""
     if mesh_efficiency >= 1.0 or not result.losses:
         return np.full(result.shape, np.nan)
     largest = np.max(np.stack([np.asarray(v) for v in result.losses.values()]), axis=0)
-    return largest / (1.0 - mesh_efficiency) / result.input_power
+    power = np.asarray(result.input_power, dtype=float)
+    return np.divide(largest / (1.0 - mesh_efficiency), power,
+                     out=np.full(largest.shape, np.nan), where=power != 0.0)
 
 
 def rank_key(row: SynthesisRow) -> tuple:
