@@ -31,6 +31,7 @@ import numpy as np
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.teeth import Layout, layouts
 from powergraph.gears.planetary import assembles, planets_meet, relative_turns
+from powergraph.kinematics.elements import element_stencil
 from powergraph.records import record
 
 #: Grid points evaluated at once (bounds the memory of a search).
@@ -180,8 +181,10 @@ SINGULAR = 1e-9
 def drivable(graph: TrainGraph, ratios: list[np.ndarray], fixed: int, given: int
              ) -> np.ndarray:
     """Where the train, ``fixed`` held, can be driven at link ``given``: its Willis rows
-    ``(w_u - w_c) - i_k (w_v - w_c) = 0`` (and ``w_u = w_v`` per coupling) fix every other
-    link's speed from ``w_given``, i.e. their matrix over the other links is regular.
+    ``(w_u - w_c) - i_k (w_v - w_c) = 0`` (the kinematic rows of
+    :func:`~powergraph.kinematics.elements.element_stencil`; ``w_u = w_v`` per coupling)
+    fix every other link's speed from ``w_given``: their matrix over the other links is
+    regular.
 
     The closed forms of :func:`speed_expressions` are simplified, so at a tooth set where
     the rows are singular they may still give a finite ratio (a removable singularity):
@@ -199,13 +202,13 @@ def drivable(graph: TrainGraph, ratios: list[np.ndarray], fixed: int, given: int
     rows = len(graph.gear_pairs) + len(graph.couplings)
     if rows != len(unknown):
         return np.zeros(points, dtype=bool)
+    # each row is an element's kinematic row; a coupling is an element of ratio 1 (its
+    # carrier's coefficient is 0, so any link stands for it)
+    elements = [(u, v, c, ratios[k]) for k, (u, v, c) in enumerate(graph.gear_pairs)]
+    elements += [(u, v, u, 1.0) for u, v in graph.couplings]
     matrix = np.zeros((points, rows, len(unknown)))
-    for k, (u, v, c) in enumerate(graph.gear_pairs):
-        for link, coefficient in ((u, 1.0), (v, -ratios[k]), (c, ratios[k] - 1.0)):
-            if link in column:
-                matrix[:, k, column[link]] += coefficient
-    for r, (u, v) in enumerate(graph.couplings, start=len(graph.gear_pairs)):
-        for link, coefficient in ((u, 1.0), (v, -1.0)):
+    for r, (u, v, c, ratio) in enumerate(elements):
+        for link, coefficient in zip((u, v, c), element_stencil(ratio)):
             if link in column:
                 matrix[:, r, column[link]] += coefficient
     bound = np.prod(np.linalg.norm(matrix, axis=2), axis=1)
