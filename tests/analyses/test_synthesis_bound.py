@@ -13,11 +13,12 @@ import pytest
 
 from powergraph.analyses.synthesis import synthesize_bound
 from powergraph.analyses.synthesis.synthesize import default_graphs, synthesize
-from powergraph.analyses.synthesis.synthesize_bound import (cofactor_functions, influential,
+from powergraph.analyses.synthesis.synthesize_bound import (ratio_functions, influential,
                                                             search_part)
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
 from powergraph.analyses.synthesis.synthesize_search import (drivable, graph_layouts,
-                                                             joint_conditions, speed_functions)
+                                                             joint_conditions, speed_functions,
+                                                             willis_ratios)
 
 
 @pytest.fixture(autouse=True)
@@ -30,8 +31,10 @@ def always_bound(monkeypatch):
 
 def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> dict:
     """``{(layout, fixed, input, output): sorted grid indices}`` of every hit (``rank``:
-    only where the train can be driven at its input, :func:`regular`)."""
+    only where the train can be driven at its input, :func:`regular`, and every
+    :func:`idle` link is fixed, input or output)."""
     out = {}
+    passive = idle(graph)
     for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
         flat = np.arange(layout.size)
         z = layout.teeth(flat)
@@ -42,7 +45,7 @@ def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> d
                 w = [np.broadcast_to(np.asarray(v, dtype=float), flat.shape) for v in fn(*i)]
             for a, wa in zip(others, w):
                 for b, wb in zip(others, w):
-                    if a == b:
+                    if a == b or (rank and not passive <= {fixed, a, b}):
                         continue
                     with np.errstate(divide="ignore", invalid="ignore"):
                         hit = flat[np.abs(wa / wb / ratio - 1.0) <= tolerance]
@@ -52,6 +55,17 @@ def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> d
                     if hit.size:
                         out[(li, fixed, a, b)] = hit
     return out
+
+
+def idle(graph) -> set[int]:
+    """Links with one mesh that hold no gear pair and no coupling: their one mesh force is
+    zero unless the link takes an external torque (its moment balance about its axis)."""
+    meshes = {n: 0 for n in range(graph.links)}
+    for u, v, _ in graph.gear_pairs:
+        meshes[u] += 1
+        meshes[v] += 1
+    holders = {c for *_, c in graph.gear_pairs} | {x for pair in graph.couplings for x in pair}
+    return {n for n, m in meshes.items() if m == 1 and n not in holders}
 
 
 def regular(graph, ratios, fixed, given) -> bool:
@@ -171,7 +185,7 @@ def test_cofactors_are_multilinear_so_the_bounds_apply() -> None:
     # Every speed is P_c / P_0 with each Willis ratio of degree at most one (Cramer's rule
     # on rows each linear in one ratio); without it the search could not prune.
     for graph in default_graphs(5):
-        assert all(fn is not None for *_, fn in cofactor_functions(graph)), graph.name
+        assert all(fn is not None for *_, fn in ratio_functions(graph)), graph.name
 
 
 def test_an_idle_planet_moves_no_ratio() -> None:
@@ -186,3 +200,62 @@ def test_an_idle_planet_moves_no_ratio() -> None:
 def test_search_reports_no_layout_skipped_by_default() -> None:
     result = synthesize(121, graphs=[CLASSICS["Wolfrom 3K"]], top=1)
     assert result.skipped == () and result.feasible > 0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [7.0, 12.0])
+def test_a_block_locked_by_equal_ratios_does_not_defeat_the_bound(monkeypatch, ratio) -> None:
+    """Two rings on a stepped planet lock it wherever their two ratios are equal
+    (``q = 1``, about one row in twenty here): both coaxial speeds then share a vanishing
+    factor. Over a common denominator every box holding such rows bounds the ratio as
+    ``0/0`` and is enumerated (about 30 to 50 points tested per hit, measured while
+    writing this); in lowest terms (:func:`ratio_functions`) the search tests few points
+    that are not hits, and still finds every hit of a scan of the whole grid."""
+    graph = next(g for g in default_graphs(6) if g.name.startswith("Simpson"))
+    teeth = (12, 50)
+    layout = graph_layouts(graph, teeth, 3)[35]
+    assert layout.name == "stepped+stepped"
+    assert all(len(block.internal) == 2 for block in layout.blocks)     # two rings each
+    tested = []
+    plain = synthesize_bound.exact_hits
+
+    def counting(graph_, layout_, flat, *args):
+        tested.append(flat.size)
+        return plain(graph_, layout_, flat, *args)
+
+    monkeypatch.setattr(synthesize_bound, "exact_hits", counting)
+    hits = search_part(graph, 0, 35, 0, 1, ratio, 0.01, teeth, 3)
+    found = sum(h.flat.size for h in hits)
+    scan = plain(graph, layout, np.arange(layout.size), ratio, 0.01)   # every point
+    assert found == sum(v.size for v in scan.values()) > 1000
+    assert sum(tested) <= 4 * found
+
+
+def test_a_planet_block_enters_the_speeds_through_one_quotient() -> None:
+    """The premise of the blocks' one-quantity order: with ``e_k1 = 1`` and
+    ``e_k2 = q`` (:func:`~powergraph.analyses.synthesis.synthesize_bound.quotient_pairs`)
+    every coaxial speed is that of the block's own tooth numbers."""
+    graph = CLASSICS["two 2K-H stages"]
+    compared = 0
+    for li, layout in enumerate(graph_layouts(graph, (12, 40), 3)):
+        flat = np.arange(0, layout.size, max(1, layout.size // 2000))
+        i = willis_ratios(layout, layout.teeth(flat))
+        substituted = list(i)
+        for f in range(len(layout.blocks)):
+            pairs = synthesize_bound.quotient_pairs(layout, f)
+            assert pairs is not None
+            e = [i[k] if layout.structure.coaxial_side[k] == 0 else 1 / i[k] for k in pairs]
+            substituted[pairs[0]] = np.ones_like(e[0])
+            q = e[1] / e[0]
+            substituted[pairs[1]] = q if layout.structure.coaxial_side[pairs[1]] == 0 else 1 / q
+        for _, _, fn in speed_functions(graph):
+            with np.errstate(divide="ignore", invalid="ignore"):
+                speeds = list(zip(fn(*i), fn(*substituted)))
+            for plain, reduced in speeds:
+                plain, reduced = (np.broadcast_to(v, flat.shape) for v in (plain, reduced))
+                # not at locked sets (infinite, or 1 / round-off)
+                finite = (np.abs(plain) < 1e9) & (np.abs(reduced) < 1e9)
+                compared += int(finite.sum())
+                np.testing.assert_allclose(reduced[finite], plain[finite], rtol=1e-12,
+                                           atol=1e-12)
+    assert compared > 100_000

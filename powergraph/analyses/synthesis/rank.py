@@ -110,7 +110,6 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
     Tooth sets with an idle mesh (no loss: a coaxial link that is neither fixed, input
     nor output turns freely, so the train is a smaller one with a passenger) and those the
     solver cannot settle are left out; None when none is left."""
-    from powergraph.analyses.sweep import compile_sweep
     from powergraph.kinematics import backdriven
     from powergraph.model import model_from_dict
     from powergraph.statics import solve
@@ -121,20 +120,22 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
     model = model_from_dict(doc)
     paths = [f"components.{g}.teeth" for g in teeth]
     values = {f"components.{g}.teeth": v for g, v in teeth.items()}
-    forward = compile_sweep(model, paths, backend="numeric")(values, quiet=True)
-    back = compile_sweep(backdriven(model), paths, backend="numeric")(values, quiet=True)
-    pv = _max_virtual_power(forward, mesh_efficiency)
-    back_eff = np.where(back.converged, back.efficiency, -np.inf)
+    forward = _sweep(model, paths, values)
     eff = np.where(forward.converged, forward.efficiency, -np.inf)
     working = forward.converged & ~_idle(forward, mesh_efficiency, len(graph.gear_pairs))
     if not working.any():
         return None
-    order = np.lexsort((np.nan_to_num(pv, nan=np.inf), -back_eff, -eff, ~working))
-    best = int(order[0])
+    # the back-driven figures only break ties of the forward efficiency
+    tied = np.flatnonzero(working & (eff == eff[working].max()))
+    back = _sweep(backdriven(model), paths, {p: v[tied] for p, v in values.items()})
+    back_eff = np.where(back.converged, back.efficiency, -np.inf)
+    pv = _max_virtual_power(forward, mesh_efficiency)
+    j = int(np.lexsort((np.nan_to_num(pv[tied], nan=np.inf), -back_eff))[0])
+    best = int(tied[j])
     chosen = {g: int(v[best]) for g, v in teeth.items()}
     doc = _document(layout, hits, chosen, mesh_efficiency)
     single = solve(model_from_dict(doc))
-    back_ok = bool(back.converged[best])
+    back_ok = bool(back.converged[j])
     return SynthesisRow(
         name=arrangement_name(layout, hits.fixed, hits.input, hits.output),
         graph=graph.name or f"{graph.links}-link", layout=layout.name, fixed=hits.fixed,
@@ -143,13 +144,28 @@ def evaluate_hits(graph, hits: Hits, ratio: float, teeth_range: tuple[int, int],
         ratio=float(forward.ratio[best]), ratio_error=float(forward.ratio[best] / ratio - 1.0),
         efficiency=float(forward.efficiency[best]),
         self_locking=bool(forward.self_locking[best]),
-        backdrive_efficiency=float(back.efficiency[best]) if back_ok else None,
-        backdrive_self_locking=bool(back.self_locking[best]) if back_ok else None,
+        backdrive_efficiency=float(back.efficiency[j]) if back_ok else None,
+        backdrive_self_locking=bool(back.self_locking[j]) if back_ok else None,
         circulating_power=float(single.circulating_power),
         max_virtual_power_ratio=None if np.isnan(pv[best]) else float(pv[best]),
         meshes=len(graph.gear_pairs), input_power=float(forward.input_power[best]),
         candidates=int(working.sum()), document=doc,
         gear_names=gear_names(layout), members=member_names(layout))
+
+
+#: Tooth sets of one arrangement from which the compiled sweep takes its closed forms
+#: (``backend="auto"``: about 0.3 s to derive and compile, then some 2·10⁶ sets a
+#: second) rather than its batched linear solves (no set-up, some 3·10⁴ a second).
+SYMBOLIC_FROM = 10_000
+
+
+def _sweep(model, paths: list[str], values: dict[str, np.ndarray]):
+    """The compiled sweep of ``model`` over ``values`` (one call, backend by size)."""
+    from powergraph.analyses.sweep import compile_sweep
+
+    size = len(next(iter(values.values())))
+    backend = "auto" if size >= SYMBOLIC_FROM else "numeric"
+    return compile_sweep(model, paths, backend=backend)(values, quiet=True)
 
 
 def _document(layout: Layout, hits: Hits, teeth: Mapping[str, int], mesh_efficiency: float
@@ -193,12 +209,16 @@ def _max_virtual_power(result, mesh_efficiency: float) -> np.ndarray:
 
 def rank_key(row: SynthesisRow) -> tuple:
     """Sort key: efficiency, back-driven efficiency (to 0.1 pp, higher first), circulating
-    power over input (to 0.1 %), meshes, largest virtual power, then a stable tiebreak."""
+    power over input (to 0.1 %), meshes, largest virtual power and ratio error (to 9
+    decimals), then name and teeth (a total order)."""
     back = row.backdrive_efficiency if row.backdrive_efficiency is not None else -np.inf
     circulating = row.circulating_power / row.input_power if row.input_power else 0.0
+    pv = row.max_virtual_power_ratio
+    # the figures to 9 decimals: equal trains (mirror images) computed along different
+    # paths differ in the last bits, and their name should decide, not round-off
     return (-round(row.efficiency, 3), -round(back, 3), round(circulating, 3), row.meshes,
-            row.max_virtual_power_ratio if row.max_virtual_power_ratio is not None else np.inf,
-            abs(row.ratio_error), row.name, tuple(sorted(row.teeth.items())))
+            round(pv, 9) if pv is not None else np.inf, round(abs(row.ratio_error), 9),
+            row.name, tuple(sorted(row.teeth.items())))
 
 
 def signature(row: SynthesisRow) -> tuple:

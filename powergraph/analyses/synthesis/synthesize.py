@@ -28,6 +28,7 @@ from powergraph.analyses.parallel import cluster
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, rank_key, signature
 from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+from powergraph.analyses.synthesis.synthesize_search import workable
 from powergraph.analyses.synthesis.tasks import SURVEY_BATCH, run_unit, survey, work_units
 from powergraph.errors import UsageError
 from powergraph.records import record
@@ -45,7 +46,10 @@ class SynthesisResult(Displayed):
     ``rows`` are the best ``top`` arrangements (each at its best tooth set); ``feasible``
     counts every feasible tooth set found, ``arrangements`` the distinct arrangements
     with at least one, ``evaluated`` the grid points searched; ``skipped`` lists the
-    layouts whose grid exceeded ``max_grid`` (graph, layout, size).
+    layouts whose grid exceeded ``max_grid`` (graph, layout, size); ``idle`` names the
+    graphs not searched because no arrangement of them works: a gear that meshes one
+    gear only, carries nothing and takes no external torque passes no power
+    (:func:`~powergraph.analyses.synthesis.synthesize_search.idle_links`).
     """
 
     ratio: float
@@ -59,6 +63,7 @@ class SynthesisResult(Displayed):
     evaluated: int
     graphs: int
     skipped: tuple[tuple[str, str, int], ...]
+    idle: tuple[str, ...] = ()
 
     def _summary(self) -> str:
         return (f"ratio {format_ratio(self.ratio)} ± {self.tolerance:.2%}: {len(self.rows)} "
@@ -102,6 +107,7 @@ class SynthesisResult(Displayed):
                 "evaluated": self.evaluated, "graphs": self.graphs,
                 "skipped": [{"graph": g, "layout": lay, "grid": n}
                             for g, lay, n in self.skipped],
+                "idle": list(self.idle),
                 "rows": [row.to_dict() for row in self.rows]}
 
     def text_report(self) -> str:
@@ -116,6 +122,10 @@ class SynthesisResult(Displayed):
             lines.append("no train found")
         else:
             lines += _row_table(self.rows)
+        if self.idle:
+            lines.append("")
+            lines.append(f"{len(self.idle)} graph(s) not searched: each has a gear that meshes "
+                         "one gear only and carries nothing, so it passes no power")
         if self.skipped:
             lines.append("")
             lines.append(f"{len(self.skipped)} layout(s) not searched (grid over the limit), "
@@ -215,6 +225,7 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         done = run(run_unit, [(graphs[gi], gi, layouts, float(ratio), float(tolerance), teeth,
                                planets, float(mesh_efficiency)) for gi, layouts, _ in units])
     rows = [row for part in done for row in part]
+    idle = tuple(g.name or f"graph {gi}" for gi, g in enumerate(graphs) if not workable(g))
     skipped = [entry for _, part in surveys for entry in part]
     evaluated = sum(size for searched, _ in surveys for _, size in searched)
     ranked, seen = [], set()
@@ -227,7 +238,7 @@ def synthesize(ratio: float, tolerance: float = 0.005, max_links: int = 6,
         mesh_efficiency=float(mesh_efficiency),
         rows=tuple(ranked if top is None else ranked[:top]),
         feasible=sum(row.candidates for row in rows), arrangements=len(ranked),
-        evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped))
+        evaluated=evaluated, graphs=len(graphs), skipped=tuple(skipped), idle=idle)
 
 
 def _survey(item: tuple) -> list:

@@ -39,7 +39,8 @@ import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.synthesize_search import (Hits, exact_hits, graph_layouts,
-                                                             speed_expressions, willis_ratios)
+                                                             speed_expressions, willis_ratios,
+                                                             working)
 from powergraph.analyses.synthesis.teeth import Layout
 from powergraph.records import record
 
@@ -54,20 +55,36 @@ SLACK = 1e-6
 
 
 @functools.lru_cache(maxsize=64)
-def cofactor_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Any], ...]:
-    """Per fixed link: ``(fixed, others, fn)``; ``fn(i_0, ..., i_G-1)`` gives polynomials
-    ``P_c`` (``c`` in ``others``) with speed ``w_c / w_others[0] = P_c / P_others[0]``,
-    from the one symbolic derivation (:func:`speed_expressions`) put over a common
-    denominator. ``fn`` is None when a ``P_c`` is not multilinear (no bound then)."""
+def ratio_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[tuple[int, int], ...], Any],
+                                                ...]:
+    """Per fixed link: ``(fixed, pairs, fn)``; for the ``j``-th pair ``(a, b)`` of coaxial
+    links, ``fn(i_0, ..., i_G-1)[2j: 2j + 2]`` gives polynomials ``N, D`` with
+    ``w_a / w_b = N / D`` in lowest terms, from the one symbolic derivation
+    (:func:`speed_expressions`). ``fn`` is None when one is not multilinear (no bound
+    then).
+
+    Lowest terms matter: over a common denominator, a factor shared by both speeds (a
+    planet block whose two meshes have equal ratios turns as one body) makes the ratio
+    ``0/0`` on every box where that factor vanishes, and no bound could settle them.
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> fixed, pairs, fn = ratio_functions(CLASSICS["2K-H"])[0]     # ring 0 fixed
+    >>> pairs, [float(v) for v in fn(-2.0, 4.0)]    # sun 1 / carrier 3 = 1 - i0 i1 = 9
+    (((1, 3),), [9.0, 1.0])
+    """
     import sympy as sp
 
     out = []
     for fixed, others, symbols, expressions in speed_expressions(graph):
-        fractions = [sp.fraction(sp.cancel(sp.together(e))) for e in expressions]
-        common = sp.lcm_list([d for _, d in fractions])
-        polys = [sp.expand(n * sp.cancel(common / d)) for n, d in fractions]
+        pairs, polys = [], []
+        for x in range(len(others)):
+            for y in range(x + 1, len(others)):
+                n, d = sp.fraction(sp.cancel(sp.together(expressions[x] / expressions[y])))
+                pairs.append((others[x], others[y]))
+                polys += [sp.expand(n), sp.expand(d)]
         linear = all(sp.Poly(p, *symbols).degree(s) <= 1 for p in polys for s in symbols)
-        out.append((fixed, others, sp.lambdify(symbols, polys, "numpy") if linear else None))
+        out.append((fixed, tuple(pairs),
+                    sp.lambdify(symbols, polys, "numpy") if linear else None))
     return tuple(out)
 
 
@@ -121,6 +138,10 @@ def factors(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], planet
         i = willis_ratios(layout, z)
         values = {("i", k): i[k] for k, own in enumerate(owners) if own == (f,)}
         ordering = [v for (_, k), v in values.items() if k in moving] or list(values.values())
+        pairs = quotient_pairs(layout, f)
+        if pairs is not None and set(pairs) <= moving:
+            values = {("q",): _quotient(layout, pairs, i)}
+            ordering = [values[("q",)]]
         for k, own in enumerate(owners):
             for side, g in enumerate(own if len(own) == 2 else ()):
                 if g == f:
@@ -133,6 +154,29 @@ def factors(graph: TrainGraph, layout_index: int, teeth: tuple[int, int], planet
         offsets = np.concatenate([[0], np.cumsum([1 << (height - L) for L in range(height)])])
         out.append(Factor(size, stride, height, order, offsets.astype(np.int64), low, high))
     return tuple(out)
+
+
+def quotient_pairs(layout: Layout, f: int) -> tuple[int, int] | None:
+    """The two cp pairs ``(k1, k2)`` of factor ``f`` when it is a planet block whose speeds
+    enter the coaxial ones through one quotient only: two meshes with coaxial gears, no
+    planet-planet mesh, carrying nothing. Its Willis rows ``w_g - w_c = e_k (w_p - w_c)``
+    (``e_k = i_k`` with the coaxial gear on side a, ``1 / i_k`` on side b) leave, the
+    planet's own speed eliminated, ``w_g2 - w_c = (e_k2 / e_k1)(w_g1 - w_c)``: every
+    coaxial speed depends on ``q = e_k2 / e_k1`` alone. Else None."""
+    st = layout.structure
+    if f >= len(layout.blocks):
+        return None
+    block = layout.blocks[f]
+    if (len(block.cp_pairs) != 2 or st.phased(block.planet)
+            or any(st.kinds[k] == "pp" for step in block.steps for k in step)):
+        return None
+    return block.cp_pairs[0], block.cp_pairs[1]
+
+
+def _quotient(layout: Layout, pairs: tuple[int, int], i: list) -> np.ndarray:
+    """``q = e_k2 / e_k1`` per row (:func:`quotient_pairs`)."""
+    e = [i[k] if layout.structure.coaxial_side[k] == 0 else 1.0 / i[k] for k in pairs]
+    return np.asarray(e[1] / e[0], dtype=float)
 
 
 def _morton(values: list) -> np.ndarray:
@@ -184,7 +228,14 @@ def _intervals(layout: Layout, tree, level, index) -> tuple[list, list]:
             at = tree[f].offsets[level[:, f]] + index[:, f]
             return tree[f].low[q][at], tree[f].high[q][at]
 
-        if len(own) == 1:
+        pairs = quotient_pairs(layout, own[0]) if ("q",) in tree[own[0]].low else None
+        if pairs is not None and k == pairs[0]:     # e_k1 = 1: i_k1 = 1
+            lo = hi = np.ones(level.shape[0])
+        elif pairs is not None:                     # e_k2 = q (q keeps one sign)
+            lo, hi = extremes(("q",), own[0])
+            if layout.structure.coaxial_side[k] == 1:
+                lo, hi = 1.0 / hi, 1.0 / lo
+        elif len(own) == 1:
             lo, hi = extremes(("i", k), own[0])
         else:                       # planet-planet: i = -z_b / z_a, both teeth positive
             (a0, a1), (b0, b1) = extremes(("z", k, 0), own[0]), extremes(("z", k, 1), own[1])
@@ -196,7 +247,7 @@ def _intervals(layout: Layout, tree, level, index) -> tuple[list, list]:
 
 def may_hit(graph: TrainGraph, lows: list, highs: list, band: tuple[float, float]
             ) -> np.ndarray:
-    """False where no ratio of any arrangement can reach ``band`` over the box
+    """False where no ratio of any working arrangement can reach ``band`` over the box
     ``lows .. highs`` of the Willis ratios (module docstring). Both ``w_in / w_out`` and
     its inverse are bounded: a large ratio lies near a pole of the first (the output
     nearly still), where only the second can be bounded."""
@@ -206,17 +257,17 @@ def may_hit(graph: TrainGraph, lows: list, highs: list, band: tuple[float, float
             for k, (lo, hi) in enumerate(zip(lows, highs))]
     inverse = tuple(sorted((1.0 / band[0], 1.0 / band[1])))
     alive = np.zeros(n, dtype=bool)
-    for _, others, fn in cofactor_functions(graph):
+    for fixed, pairs, fn in ratio_functions(graph):
         if fn is None:
             return np.ones(n, dtype=bool)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             p = [np.broadcast_to(np.asarray(v, float), (corners * n,)).reshape(corners, n)
                  for v in fn(*args)]
-            for a in range(len(others)):
-                for b in range(len(others)):
-                    if a != b:
-                        alive |= (_reaches(p[a], p[b], band)
-                                  & _reaches(p[b], p[a], inverse))
+            for j, (a, b) in enumerate(pairs):
+                for x, y, top, bottom in ((a, b, p[2 * j], p[2 * j + 1]),
+                                          (b, a, p[2 * j + 1], p[2 * j])):
+                    if working(graph, fixed, x, y):
+                        alive |= _reaches(top, bottom, band) & _reaches(bottom, top, inverse)
     return alive
 
 

@@ -24,12 +24,13 @@ from __future__ import annotations
 
 import copy
 import functools
+from collections import Counter
 from typing import Any, Callable
 
 import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
-from powergraph.analyses.synthesis.teeth import Layout, layouts
+from powergraph.analyses.synthesis.teeth import Layout, layouts, structure
 from powergraph.gears.planetary import assembles, planets_meet, relative_turns
 from powergraph.kinematics.elements import element_stencil
 from powergraph.records import record
@@ -51,12 +52,56 @@ class Hits:
     flat: np.ndarray
 
 
+@functools.lru_cache(maxsize=256)
+def idle_links(graph: TrainGraph) -> frozenset[int]:
+    """Links that mesh exactly one gear and carry nothing (hold no gear pair, no
+    coupling). Unless such a link takes an external torque (fixed, input or output),
+    its torque balance about its own axis leaves its one mesh force zero: the mesh
+    passes no power at every tooth set, so the train with it is no working train (the
+    ranking leaves such sets out, :mod:`~powergraph.analyses.synthesis.rank`).
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> sorted(idle_links(CLASSICS["2K-H"]))           # ring 0 and sun 1
+    [0, 1]
+    >>> sorted(idle_links(CLASSICS["Wolfrom 3K"]))     # the carrier 3 takes no torque
+    [0, 1, 2]
+    """
+    meshes = Counter(x for u, v, _ in graph.gear_pairs for x in (u, v))
+    carriers = {c for *_, c in graph.gear_pairs}
+    coupled = {x for pair in graph.couplings for x in pair}
+    return frozenset(n for n in range(graph.links)
+                     if meshes[n] == 1 and n not in carriers and n not in coupled)
+
+
+def working(graph: TrainGraph, fixed: int, input: int, output: int) -> bool:
+    """Whether every :func:`idle_links` link of ``graph`` takes an external torque in
+    the arrangement (``fixed`` held, ``input`` driven, ``output`` loaded)."""
+    return idle_links(graph) <= {fixed, input, output}
+
+
+def workable(graph: TrainGraph) -> bool:
+    """Whether some arrangement of ``graph`` is :func:`working`: only coaxial links are
+    fixed, driven or loaded, so every idle link must be coaxial, and three at most.
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> workable(CLASSICS["Wolfrom 3K"])
+    True
+    >>> idle_planet = TrainGraph(5, ((0, 1, 0), (0, 3, 0), (3, 2, 1), (3, 4, 2)),
+    ...                          ((1, 2, 3), (2, 0, 3), (1, 4, 3)))
+    >>> workable(idle_planet)              # planet 4 meshes sun 1 only
+    False
+    """
+    st = structure(graph)
+    idle = idle_links(graph)
+    return st is not None and idle <= set(st.coaxial) and len(idle) <= 3
+
+
 @functools.lru_cache(maxsize=64)
 def speed_expressions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], tuple, tuple], ...]:
     """Per fixed coaxial link: ``(fixed, others, symbols, expressions)``, the sympy speeds
     of ``others`` (the other coaxial links) over the speed of ``others[0]`` in the meshes'
     Willis ratios ``symbols`` (``i_0 .. i_G-1``): the one symbolic derivation of the
-    search, lambdified by :func:`speed_functions` and :func:`cofactor_functions`."""
+    search, lambdified by :func:`speed_functions` and :func:`ratio_functions`."""
     import sympy as sp
 
     from powergraph.errors import PowerGraphError
@@ -156,7 +201,7 @@ def exact_hits(graph: TrainGraph, layout: Layout, flat: np.ndarray, ratio: float
                      for v in fn(*i)]
                 for a, wa in zip(others, w):
                     for b, wb in zip(others, w):
-                        if a == b:
+                        if a == b or not working(graph, fixed, a, b):
                             continue
                         hit = np.abs(wa / wb / ratio - 1.0) <= tolerance
                         if hit.any():

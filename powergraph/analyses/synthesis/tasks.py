@@ -37,7 +37,7 @@ from typing import Sequence
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.rank import SynthesisRow, evaluate_hits
 from powergraph.analyses.synthesis.synthesize_bound import search_part
-from powergraph.analyses.synthesis.synthesize_search import graph_layouts
+from powergraph.analyses.synthesis.synthesize_search import graph_layouts, workable
 
 #: Graphs surveyed by one task.
 SURVEY_BATCH = 32
@@ -49,10 +49,15 @@ def survey(batch: Sequence[tuple[TrainGraph, int]], teeth: tuple[int, int], plan
            max_grid: int) -> list[Survey]:
     """Per graph of ``batch`` (graph, graph index): the layouts searched as
     ``(layout index, grid size)`` (empty grids left out) and those over ``max_grid`` as
-    ``(graph name, layout name, grid size)``."""
+    ``(graph name, layout name, grid size)``; neither for a graph that is not
+    :func:`~powergraph.analyses.synthesis.synthesize_search.workable` (an idle gear in
+    every arrangement)."""
     out = []
     for graph, gi in batch:
         searched, skipped = [], []
+        if not workable(graph):           # no working train: nothing to search
+            out.append((searched, skipped))
+            continue
         for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
             if layout.size > max_grid:
                 skipped.append((graph.name or f"graph {gi}", layout.name, layout.size))
