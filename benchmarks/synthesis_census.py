@@ -3,7 +3,9 @@
 For every layout of the default graphs (``--max-links``) whose grid exceeds ``--max-grid``,
 ``--samples`` grid points drawn at random (seeded) pass the synthesis's own exact test
 (:func:`powergraph.analyses.synthesis.synthesize_search.exact_hits`: the ratio within the
-tolerance, the train drivable at its input, the conditions joining planets). The hits per
+tolerance, the train drivable at its input, the conditions joining planets, every idle
+gear fixed, driven or loaded). Graphs with an idle gear in every arrangement are left out,
+as the synthesis leaves them out (``workable``). The hits per
 sampled point, times the grid, estimate the layout's feasible tooth sets (counted per
 arrangement, as ``synthesize`` counts them). A layout with no sampled hit is estimated at
 zero; its true count is below about ``grid / samples``.
@@ -25,14 +27,15 @@ import time
 import numpy as np
 
 from powergraph.analyses.synthesis.synthesize import MAX_GRID, default_graphs, synthesize
-from powergraph.analyses.synthesis.synthesize_search import exact_hits, graph_layouts
+from powergraph.analyses.synthesis.synthesize_search import (exact_hits, graph_layouts,
+                                                             workable)
 
 
 def census(ratio: float, max_links: int, max_grid: int, samples: int, tolerance: float = 0.005,
            teeth: tuple[int, int] = (12, 120), planets: int = 3, seed: int = 0) -> dict:
     rng = np.random.default_rng(seed)
     rows, start = [], time.perf_counter()
-    for graph in default_graphs(max_links):
+    for graph in filter(workable, default_graphs(max_links)):
         for layout in graph_layouts(graph, teeth, planets):
             if layout.size <= max_grid:
                 continue

@@ -142,3 +142,19 @@ def test_more_workers_than_cores_is_said(capsys, monkeypatch) -> None:
     assert err.startswith("warning: --workers 3") and "2 cores" in err and err.count("\n") == 1
     cluster_options(argparse.Namespace(workers="2", scheduler=None))
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.slow
+def test_graphs_with_an_idle_gear_are_named_not_searched(capsys) -> None:
+    # by hand: the 3-link gear pair on the frame, the 4-link three gears in a row on the
+    # frame (d-graph 2) and the 4-link gear on a crank (d-graph 3) each have a gear off the
+    # main axis that meshes one gear only and carries nothing: never fixed, driven or
+    # loaded, it passes no power; the 2K-H and the K-H-V are searched
+    status, out, err = run(capsys, "--ratio", "5", "--max-links", "4", "--json")
+    assert status == 0, err
+    data = json.loads(out)
+    assert data["idle"] == ["3-link d-graph 1 (r-graph 1)", "4-link d-graph 2 (r-graph 1)",
+                            "4-link d-graph 3 (r-graph 2)"]
+    assert data["skipped"] == [] and data["graphs"] == 5 and data["rows"]
+    status, out, err = run(capsys, "--ratio", "5", "--max-links", "4")
+    assert "3 graph(s) not searched" in out and max(map(len, out.splitlines())) <= 100

@@ -124,8 +124,10 @@ class SynthesisResult(Displayed):
             lines += _row_table(self.rows)
         if self.idle:
             lines.append("")
-            lines.append(f"{len(self.idle)} graph(s) not searched: each has a gear that meshes "
-                         "one gear only and carries nothing, so it passes no power")
+            lines.append(f"{len(self.idle)} graph(s) not searched: in every arrangement a gear "
+                         "that meshes one gear only and")
+            lines.append("carries nothing is neither fixed, driven nor loaded, so it passes "
+                         "no power (an idle gear)")
         if self.skipped:
             lines.append("")
             lines.append(f"{len(self.skipped)} layout(s) not searched (grid over the limit), "
