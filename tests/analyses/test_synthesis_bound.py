@@ -181,9 +181,9 @@ def test_synthesis_runs_where_an_arrangements_first_set_locks() -> None:
     assert result.rows
 
 
-def test_cofactors_are_multilinear_so_the_bounds_apply() -> None:
-    # Every speed is P_c / P_0 with each Willis ratio of degree at most one (Cramer's rule
-    # on rows each linear in one ratio); without it the search could not prune.
+def test_ratios_are_multilinear_so_the_bounds_apply() -> None:
+    # Every ratio is N / D with each Willis ratio of degree at most one (factors of
+    # Cramer's rule on rows each linear in one ratio); without it the search could not prune.
     for graph in default_graphs(5):
         assert all(fn is not None for *_, fn in ratio_functions(graph)), graph.name
 

@@ -8,15 +8,16 @@ stage. Each factor's rows are sorted and cut into aligned segments of ``2^L`` ro
 ``i_k`` lies in an interval (its smallest and largest value over the segment; for a
 planet-planet mesh, from the two step ranges).
 
-The speed of each coaxial link is ``P_c(i) / P_0(i)`` where the ``P_c`` are the
-cofactors of the Willis system: **multilinear** in the ``i_k`` (each ratio enters one row
-of the system once; :func:`cofactor_functions` checks it). So a ratio
-``P_a / P_b`` is linear-fractional in each ``i_k``. If ``P_b`` keeps one strict sign on
-the ``2^G`` corners of the box, it keeps it on the whole box (a multilinear function takes
-its extremes at corners), the ratio has no pole there, is monotonic in each ``i_k``, and
-its range over the box lies between its smallest and largest corner value. A node whose
-range misses ``ratio (1 ± tolerance)`` for every choice of fixed link, input and output
-holds no hit and is dropped; otherwise it is split in two along its largest factor. Nodes
+The ratio of two coaxial speeds is ``N(i) / D(i)`` in lowest terms, both **multilinear**
+in the ``i_k`` (factors of cofactors of the Willis system, where each ratio enters one row
+once; :func:`ratio_functions` checks it), so linear-fractional in each ``i_k``. If ``D``
+keeps one strict sign on the ``2^G`` corners of the box, it keeps it on the whole box (a
+multilinear function takes its extremes at corners), the ratio has no pole there, is
+monotonic in each ``i_k``, and its range over the box lies between its smallest and
+largest corner value. A planet block entering the speeds through one quotient
+(:func:`quotient_pairs`) is sorted by it and bounded through it. A node whose range misses
+``ratio (1 ± tolerance)`` for every working choice of fixed link, input and output holds
+no hit and is dropped; otherwise it is split in two along its largest factor. Nodes
 of at most :data:`LEAF` grid points are enumerated and every point passes the exact test of
 :func:`~powergraph.analyses.synthesis.synthesize_search.exact_hits`, the test a plain grid
 scan applies. The pruning only drops boxes that provably hold no hit (a slack of

@@ -63,7 +63,7 @@ def idle_links(graph: TrainGraph) -> frozenset[int]:
     >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
     >>> sorted(idle_links(CLASSICS["2K-H"]))           # ring 0 and sun 1
     [0, 1]
-    >>> sorted(idle_links(CLASSICS["Wolfrom 3K"]))     # the carrier 3 takes no torque
+    >>> sorted(idle_links(CLASSICS["Wolfrom 3K"]))     # sun 1, rings 0 and 2
     [0, 1, 2]
     """
     meshes = Counter(x for u, v, _ in graph.gear_pairs for x in (u, v))
