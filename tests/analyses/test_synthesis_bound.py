@@ -30,9 +30,11 @@ def always_bound(monkeypatch):
 
 
 def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> dict:
-    """``{(layout, fixed, input, output): sorted grid indices}`` of every hit (``rank``:
-    only where the train can be driven at its input, :func:`regular`, and every
-    :func:`idle` link is fixed, input or output)."""
+    """``{(layout, fixed, input, output): sorted grid indices}`` of every hit. With
+    ``rank`` (the default): the Willis rows solved numerically point by point (numpy,
+    batched) with the fixed link at rest and the input at speed 1, only where they fix
+    every speed (:func:`regular`), and every :func:`idle` link fixed, input or output.
+    Without: the closed forms' ratio (which also gives a value at locked sets)."""
     out = {}
     passive = idle(graph)
     for li, layout in enumerate(graph_layouts(graph, teeth, planets)):
@@ -44,16 +46,39 @@ def brute_force(graph, ratio, tolerance, teeth, planets, rank: bool = True) -> d
             with np.errstate(divide="ignore", invalid="ignore"):
                 w = [np.broadcast_to(np.asarray(v, dtype=float), flat.shape) for v in fn(*i)]
             for a, wa in zip(others, w):
+                solved = solve_rows(graph, i, fixed, a) if rank else None
                 for b, wb in zip(others, w):
                     if a == b or (rank and not passive <= {fixed, a, b}):
                         continue
                     with np.errstate(divide="ignore", invalid="ignore"):
-                        hit = flat[np.abs(wa / wb / ratio - 1.0) <= tolerance]
+                        value = 1.0 / solved[b] if rank else wa / wb
+                        hit = flat[np.abs(value / ratio - 1.0) <= tolerance]
                     hit = hit[joint_conditions(layout, hit)]
-                    if rank:
-                        hit = hit[[regular(graph, [x[j] for x in i], fixed, a) for j in hit]]
                     if hit.size:
                         out[(li, fixed, a, b)] = hit
+    return out
+
+
+def solve_rows(graph, ratios, fixed, given) -> dict:
+    """Every link's speed with ``fixed`` at rest and ``given`` at 1, from the rows
+    ``(w_u - w_c) - i (w_v - w_c) = 0`` (``w_u - w_v = 0`` per coupling) solved point by
+    point; NaN where they do not fix every speed (rank below the unknowns)."""
+    unknown = [n for n in range(graph.links) if n not in (fixed, given)]
+    points = ratios[0].shape[0]
+    rows = np.zeros((points, len(graph.gear_pairs) + len(graph.couplings), graph.links))
+    for r, ((u, v, c), i) in enumerate(zip(graph.gear_pairs, ratios)):
+        rows[:, r, u] += 1.0
+        rows[:, r, v] -= i
+        rows[:, r, c] += i - 1.0
+    for r, (u, v) in enumerate(graph.couplings, start=len(graph.gear_pairs)):
+        rows[:, r, u], rows[:, r, v] = 1.0, -1.0
+    matrix, rhs = rows[:, :, unknown], -rows[:, :, given]
+    regular = np.linalg.matrix_rank(matrix) == len(unknown)
+    speeds = np.full((points, len(unknown)), np.nan)
+    if regular.any():
+        speeds[regular] = np.linalg.solve(matrix[regular], rhs[regular][..., None])[..., 0]
+    out = {n: speeds[:, j] for j, n in enumerate(unknown)}
+    out[fixed], out[given] = np.zeros(points), np.ones(points)
     return out
 
 
@@ -185,7 +210,7 @@ def test_ratios_are_multilinear_so_the_bounds_apply() -> None:
     # Every ratio is N / D with each Willis ratio of degree at most one (factors of
     # Cramer's rule on rows each linear in one ratio); without it the search could not prune.
     for graph in default_graphs(5):
-        assert all(fn is not None for *_, fn in ratio_functions(graph)), graph.name
+        assert all(linear for *_, linear in ratio_functions(graph)), graph.name
 
 
 def test_an_idle_planet_moves_no_ratio() -> None:

@@ -34,14 +34,14 @@ Examples
 from __future__ import annotations
 
 import functools
-from typing import Any, Callable
 
 import numpy as np
 
 from powergraph.analyses.synthesis.graph import TrainGraph
 from powergraph.analyses.synthesis.synthesize_search import (Hits, exact_hits, graph_layouts,
-                                                             speed_expressions, willis_ratios,
-                                                             working)
+                                                             ratio_functions,
+                                                             speed_expressions,
+                                                             willis_ratios, working)
 from powergraph.analyses.synthesis.teeth import Layout
 from powergraph.records import record
 
@@ -53,40 +53,6 @@ SCAN = 1 << 18
 BATCH = 1 << 11
 #: Relative slack of the bound test (rounding of the two evaluations of the ratio).
 SLACK = 1e-6
-
-
-@functools.lru_cache(maxsize=64)
-def ratio_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[tuple[int, int], ...], Any],
-                                                ...]:
-    """Per fixed link: ``(fixed, pairs, fn)``; for the ``j``-th pair ``(a, b)`` of coaxial
-    links, ``fn(i_0, ..., i_G-1)[2j: 2j + 2]`` gives polynomials ``N, D`` with
-    ``w_a / w_b = N / D`` in lowest terms, from the one symbolic derivation
-    (:func:`speed_expressions`). ``fn`` is None when one is not multilinear (no bound
-    then).
-
-    Lowest terms matter: over a common denominator, a factor shared by both speeds (a
-    planet block whose two meshes have equal ratios turns as one body) makes the ratio
-    ``0/0`` on every box where that factor vanishes, and no bound could settle them.
-
-    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
-    >>> fixed, pairs, fn = ratio_functions(CLASSICS["2K-H"])[0]     # ring 0 fixed
-    >>> pairs, [float(v) for v in fn(-2.0, 4.0)]    # sun 1 / carrier 3 = 1 - i0 i1 = 9
-    (((1, 3),), [9.0, 1.0])
-    """
-    import sympy as sp
-
-    out = []
-    for fixed, others, symbols, expressions in speed_expressions(graph):
-        pairs, polys = [], []
-        for x in range(len(others)):
-            for y in range(x + 1, len(others)):
-                n, d = sp.fraction(sp.cancel(sp.together(expressions[x] / expressions[y])))
-                pairs.append((others[x], others[y]))
-                polys += [sp.expand(n), sp.expand(d)]
-        linear = all(sp.Poly(p, *symbols).degree(s) <= 1 for p in polys for s in symbols)
-        out.append((fixed, tuple(pairs),
-                    sp.lambdify(symbols, polys, "numpy") if linear else None))
-    return tuple(out)
 
 
 @record
@@ -258,8 +224,8 @@ def may_hit(graph: TrainGraph, lows: list, highs: list, band: tuple[float, float
             for k, (lo, hi) in enumerate(zip(lows, highs))]
     inverse = tuple(sorted((1.0 / band[0], 1.0 / band[1])))
     alive = np.zeros(n, dtype=bool)
-    for fixed, pairs, fn in ratio_functions(graph):
-        if fn is None:
+    for fixed, pairs, fn, linear in ratio_functions(graph):
+        if not linear:
             return np.ones(n, dtype=bool)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             p = [np.broadcast_to(np.asarray(v, float), (corners * n,)).reshape(corners, n)

@@ -133,6 +133,41 @@ def speed_expressions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], tu
 
 
 @functools.lru_cache(maxsize=64)
+def ratio_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[tuple[int, int], ...],
+                                                      Callable, bool], ...]:
+    """Per fixed link: ``(fixed, pairs, fn, linear)``; for the ``j``-th pair ``(a, b)`` of
+    coaxial links, ``fn(i_0, ..., i_G-1)[2j: 2j + 2]`` gives polynomials ``N, D`` with
+    ``w_a / w_b = N / D`` in lowest terms, from the one symbolic derivation
+    (:func:`speed_expressions`); ``linear`` whether all are multilinear (the bounds of
+    :mod:`~powergraph.analyses.synthesis.synthesize_bound` need it). The exact test takes
+    its ratios from them too: the speeds over a reference link lose every digit where that
+    link stands still (two links held by one fixed), and their quotient is round-off.
+
+    Lowest terms matter: over a common denominator, a factor shared by both speeds (a
+    planet block whose two meshes have equal ratios turns as one body) makes the ratio
+    ``0/0`` on every box where that factor vanishes, and no bound could settle them.
+
+    >>> from powergraph.analyses.synthesis.synthesize_classics import CLASSICS
+    >>> fixed, pairs, fn, _ = ratio_functions(CLASSICS["2K-H"])[0]  # ring 0 fixed
+    >>> pairs, [float(v) for v in fn(-2.0, 4.0)]    # sun 1 / carrier 3 = 1 - i0 i1 = 9
+    (((1, 3),), [9.0, 1.0])
+    """
+    import sympy as sp
+
+    out = []
+    for fixed, others, symbols, expressions in speed_expressions(graph):
+        pairs, polys = [], []
+        for x in range(len(others)):
+            for y in range(x + 1, len(others)):
+                n, d = sp.fraction(sp.cancel(sp.together(expressions[x] / expressions[y])))
+                pairs.append((others[x], others[y]))
+                polys += [sp.expand(n), sp.expand(d)]
+        linear = all(sp.Poly(p, *symbols).degree(s) <= 1 for p in polys for s in symbols)
+        out.append((fixed, tuple(pairs), sp.lambdify(symbols, polys, "numpy"), linear))
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=64)
 def speed_functions(graph: TrainGraph) -> tuple[tuple[int, tuple[int, ...], Callable], ...]:
     """Per fixed coaxial link: ``(fixed, others, fn)`` where ``fn(i_0, ..., i_G-1)`` gives
     the speeds of ``others`` (the other coaxial links) over the speed of ``others[0]``."""
@@ -195,15 +230,16 @@ def exact_hits(graph: TrainGraph, layout: Layout, flat: np.ndarray, ratio: float
     for low in range(0, flat.size, SUB_CHUNK):
         part = flat[low:low + SUB_CHUNK]
         i = willis_ratios(layout, layout.teeth(part))
-        for fixed, others, fn in speed_functions(graph):
+        for fixed, pairs, fn, _ in ratio_functions(graph):
             with np.errstate(divide="ignore", invalid="ignore"):
-                w = [np.broadcast_to(np.asarray(v, dtype=float), part.shape)
+                p = [np.broadcast_to(np.asarray(v, dtype=float), part.shape)
                      for v in fn(*i)]
-                for a, wa in zip(others, w):
-                    for b, wb in zip(others, w):
-                        if a == b or not working(graph, fixed, a, b):
+                for j, (u, v) in enumerate(pairs):
+                    for a, b, top, bottom in ((u, v, p[2 * j], p[2 * j + 1]),
+                                              (v, u, p[2 * j + 1], p[2 * j])):
+                        if not working(graph, fixed, a, b):
                             continue
-                        hit = np.abs(wa / wb / ratio - 1.0) <= tolerance
+                        hit = np.abs(top / bottom / ratio - 1.0) <= tolerance
                         if hit.any():
                             hit[hit] = drivable(layout.graph, [x[hit] for x in i], fixed, a)
                         if hit.any():
